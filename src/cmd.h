@@ -1,0 +1,18 @@
+/* cmd.h: the subcommands; each returns the process exit status. */
+#ifndef DRAPE_CMD_H
+#define DRAPE_CMD_H
+
+#include <stdio.h>
+
+/* Exit statuses shared by every subcommand. */
+enum {
+	EXIT_OK = 0,
+	EXIT_RUNTIME = 1,	/* I/O failed, out of memory */
+	EXIT_USAGE = 2,		/* bad arguments, bad scene or replay */
+	EXIT_BLOWUP = 3,	/* the simulation diverged */
+};
+
+int cmd_run(int argc, char **argv);
+void usage(FILE *f);
+
+#endif

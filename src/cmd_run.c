@@ -1,0 +1,194 @@
+/* cmd_run.c: `drape run`: a headless run with progress and a summary. */
+#include <getopt.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cmd.h"
+#include "obj.h"
+#include "scene.h"
+#include "stepper.h"
+#include "units.h"
+
+static double
+now(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void
+progress(const struct stepper *st, double wall)
+{
+	double rate = wall > 0 ? st->t / wall : 0;
+
+	fprintf(stderr, "\r  t %.4f / %.4f s   step %ld   %.0f steps/s   ETA %.0f s   ",
+	    st->t, st->t_end, st->step, wall > 0 ? (double)st->step / wall : 0,
+	    rate > 0 ? (st->t_end - st->t) / rate : 0);
+}
+
+static void
+summary(const struct stepper *st, double wall)
+{
+	const struct scene *sc = st->sc;
+	const struct cloth *cl = &st->cl;
+	struct energy e;
+	static const char *dir[2] = { "warp", "weft" };
+	int d;
+
+	stepper_energy(st, &e);
+	printf("scene        %s (%s)\n", sc->name, sc->path);
+	printf("network      %d x %d nodes, %zu springs, %zu shear corners, %zu bending hinges, "
+	    "%zu triangles\n", cl->nu, cl->nv, cl->nsprings, cl->ncorners, cl->nhinges, cl->ntri);
+	for (d = 0; d < 2; d++)
+		printf("bending %s %.4g N*m (%s)\n", dir[d], sc->mat.bending[d],
+		    sc->mat.bending_derived[d] ? "derived: modulus*thickness^3/12" : "given");
+	printf("integrator   %s, dt %.4g s (%s; omega <= %.4g rad/s)\n",
+	    integrator_name(sc->integrator), st->dt_set, st->dt_auto ? "auto" : "given",
+	    st->omega);
+	printf("steps        %ld (%ld force evaluations", st->step, st->in.nfev);
+	if (sc->integrator == INTEG_DOPRI5)
+		printf(", %ld steps rejected", st->in.rejected);
+	printf(")\n");
+	printf("simulated    %.6g s\n", st->t);
+	printf("wall time    %.3f s\n", wall);
+	printf("speed        %.4g x real time, %.0f steps/s\n", wall > 0 ? st->t / wall : 0,
+	    wall > 0 ? (double)st->step / wall : 0);
+	printf("energy       %.6e J (kinetic %.4e, gravity %.4e, stretch %.4e, shear %.4e, "
+	    "bend %.4e, load %.4e)\n", energy_total(&e), e.kinetic, e.gravity, e.stretch,
+	    e.shear, e.bend, e.load);
+	printf("state hash   %016" PRIx64 "\n", stepper_hash(st));
+}
+
+static int
+bad_option(const char *opt, const char *val, const char *what)
+{
+	fprintf(stderr, "drape run: %s '%s': expected %s\n", opt, val, what);
+	return EXIT_USAGE;
+}
+
+int
+cmd_run(int argc, char **argv)
+{
+	static const struct option longopts[] = {
+		{ "headless", no_argument, NULL, 'H' },
+		{ "until", required_argument, NULL, 'u' },
+		{ "integrator", required_argument, NULL, 'i' },
+		{ "dt", required_argument, NULL, 'd' },
+		{ "final-obj", required_argument, NULL, 'o' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 },
+	};
+	const char *final_obj = NULL;
+	double until = -1, dt = -1;
+	int integ = -1, c, tty = isatty(STDERR_FILENO), rc = EXIT_OK;
+	struct scene sc;
+	struct stepper st;
+	struct drape_err err;
+	struct blowup bl;
+	double t0, last;
+	char why[200];
+
+	optind = 1;
+	opterr = 0;
+	while ((c = getopt_long(argc, argv, "+h", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'H':
+			break;	/* the only mode until the front end lands */
+		case 'u':
+			if (units_parse(optarg, DIM_TIME, &until, 1, why, sizeof why) != 0 ||
+			    !(until > 0))
+				return bad_option("--until", optarg, "a time greater than 0");
+			break;
+		case 'i': {
+			enum integrator_kind k;
+
+			if (integrator_from_name(optarg, &k) != 0)
+				return bad_option("--integrator", optarg,
+				    "rk4, euler, symplectic-euler, rk2 or dopri5");
+			integ = (int)k;
+			break;
+		}
+		case 'd':
+			if (strcmp(optarg, "auto") == 0)
+				dt = 0;
+			else if (units_parse(optarg, DIM_TIME, &dt, 1, why, sizeof why) != 0 ||
+			    !(dt > 0))
+				return bad_option("--dt", optarg, "'auto' or a time greater than 0");
+			break;
+		case 'o':
+			final_obj = optarg;
+			break;
+		case 'h':
+			usage(stdout);
+			return EXIT_OK;
+		default:
+			if (optopt != 0)
+				fprintf(stderr, "drape run: option '-%c' needs a value or is unknown\n",
+				    optopt);
+			else
+				fprintf(stderr, "drape run: unknown option '%s'\n", argv[optind - 1]);
+			usage(stderr);
+			return EXIT_USAGE;
+		}
+	}
+	if (optind != argc - 1) {
+		fprintf(stderr, "drape run: expected one scene file\n");
+		usage(stderr);
+		return EXIT_USAGE;
+	}
+	if (scene_load(&sc, argv[optind], &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		return EXIT_USAGE;
+	}
+	if (until > 0)
+		sc.duration = until;
+	if (dt >= 0)
+		sc.dt = dt;
+	if (integ >= 0)
+		sc.integrator = (enum integrator_kind)integ;
+	if (stepper_init(&st, &sc, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		scene_free(&sc);
+		return EXIT_USAGE;
+	}
+
+	t0 = last = now();
+	while (!stepper_done(&st)) {
+		if (stepper_step(&st, &bl) != 0) {
+			if (tty)
+				fputc('\n', stderr);
+			fprintf(stderr, "drape: %s: blow-up at step %ld (t = %.6g s)", sc.path,
+			    bl.step, bl.t);
+			if (bl.node >= 0)
+				fprintf(stderr, ": node %d (i %d, j %d)", bl.node, bl.i, bl.j);
+			fprintf(stderr, ": %s\n", bl.why);
+			rc = EXIT_BLOWUP;
+			break;
+		}
+		if (tty && (st.step & 255) == 0 && now() - last > 0.25) {
+			last = now();
+			progress(&st, last - t0);
+		}
+	}
+	if (tty)
+		fputs("\r\033[K", stderr);
+	summary(&st, now() - t0);
+	if (rc == EXIT_OK && final_obj != NULL &&
+	    obj_write(final_obj, stepper_x(&st), st.cl.n, st.cl.tri, st.cl.ntri, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		rc = EXIT_RUNTIME;
+	}
+	if (fflush(stdout) != 0 && rc == EXIT_OK) {
+		perror("drape: stdout");
+		rc = EXIT_RUNTIME;
+	}
+	stepper_free(&st);
+	scene_free(&sc);
+	return rc;
+}

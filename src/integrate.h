@@ -1,0 +1,52 @@
+/* integrate.h: one step of an ODE y' = f(t, y) by a chosen method.
+ *
+ * y holds positions then velocities (two halves of n/2), and f returns
+ * velocities then accelerations; symplectic Euler relies on that split.
+ * Nothing here knows about cloth. */
+#ifndef DRAPE_INTEGRATE_H
+#define DRAPE_INTEGRATE_H
+
+#include <stddef.h>
+
+enum integrator_kind {
+	INTEG_RK4,		/* classic 4th order Runge-Kutta: the chapter's */
+	INTEG_EULER,		/* explicit (forward) Euler */
+	INTEG_SYMPLECTIC_EULER,	/* v then x (semi-implicit Euler) */
+	INTEG_RK2,		/* explicit midpoint */
+	INTEG_DOPRI5,		/* Dormand-Prince 5(4), adaptive */
+	INTEG_COUNT
+};
+
+typedef void (*rhs_fn)(void *ctx, double t, const double *y, double *dydt);
+
+struct integrator {
+	enum integrator_kind kind;
+	size_t n;
+	double tol;		/* DOPRI5 only: absolute and relative */
+	double *k[7];
+	double *tmp;
+	long nfev;		/* evaluations of f so far */
+	long rejected;		/* DOPRI5 steps tried and refused */
+};
+
+const char *integrator_name(enum integrator_kind kind);
+int integrator_from_name(const char *name, enum integrator_kind *kind);
+
+/* Order of accuracy, and the largest h*omega for which an undamped
+ * oscillator of angular frequency omega stays bounded (0 for methods that
+ * grow for any step: explicit Euler and explicit midpoint). */
+int integrator_order(enum integrator_kind kind);
+double integrator_imag_limit(enum integrator_kind kind);
+
+int integrator_init(struct integrator *in, enum integrator_kind kind, size_t n, double tol);
+void integrator_free(struct integrator *in);
+
+/*
+ * Sets y_out to y(t + *dt). DOPRI5 may shrink *dt until the local error is
+ * within tolerance; every method sets *dt_next to the step it proposes next.
+ * Returns 0, or -1 if DOPRI5's step fell below what t can resolve.
+ */
+int integrator_step(struct integrator *in, rhs_fn f, void *ctx, double t, const double *y,
+    double *y_out, double *dt, double *dt_next);
+
+#endif

@@ -1,0 +1,46 @@
+/* main.c: dispatch to a subcommand. */
+#include <stdio.h>
+#include <string.h>
+
+#include "config.h"
+#include "cmd.h"
+
+void
+usage(FILE *f)
+{
+	fputs("usage: drape [--help | --version]\n"
+	    "       drape SCENE\n"
+	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
+	    "                 [--final-obj FILE] SCENE\n"
+	    "\n"
+	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
+	    "T and DT are times in seconds, or with a unit (ms, us); DT may be 'auto'.\n"
+	    "See drape(1) and drape-scene(5).\n", f);
+}
+
+int
+main(int argc, char **argv)
+{
+	if (argc < 2) {
+		usage(stderr);
+		return EXIT_USAGE;
+	}
+	if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+		usage(stdout);
+		return EXIT_OK;
+	}
+	if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "-V") == 0) {
+		printf("drape %s\n", PACKAGE_VERSION);
+		return EXIT_OK;
+	}
+	if (strcmp(argv[1], "run") == 0)
+		return cmd_run(argc - 1, argv + 1);
+	if (argv[1][0] == '-') {
+		fprintf(stderr, "drape: unknown option '%s'\n", argv[1]);
+		usage(stderr);
+		return EXIT_USAGE;
+	}
+	/* `drape SCENE`: the interactive front end is not built yet, so the
+	 * scene runs headless, as `drape run` would. */
+	return cmd_run(argc, argv);
+}

@@ -1,0 +1,744 @@
+/* scene.c: reads a scene file into struct scene, checking every value.
+ *
+ * The file is first split into lines by ini.c; each section kind has a table
+ * of the keys it accepts, so an unknown key, a duplicate and a missing
+ * required key are found in one place. Later issues add sections to
+ * section_kinds[] and a reader for each. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ini.h"
+#include "scene.h"
+#include "units.h"
+
+#define MAX_GRID 4096		/* nodes along one direction */
+#define MAX_NODES (4 << 20)	/* nodes in all */
+#define MAX_SCENE_BYTES (16 << 20)
+
+struct group {
+	const struct ini *ini;
+	size_t first, end;	/* key entries [first, end) */
+	const char *section;
+	int line;		/* of the header */
+};
+
+struct pctx {
+	const char *file;
+	struct drape_err *err;
+	struct scene *sc;
+	/* raw selectors, resolved once [cloth] has given the grid size */
+	struct raw_sel *raw;
+	size_t nraw, rawcap;
+};
+
+/* A node selector kept as text until the grid size is known. Its owner is
+ * named by index: the arrays it lives in may still move. */
+struct raw_sel {
+	int line;
+	int is_load;		/* else a motion */
+	size_t index;
+	char *text;
+};
+
+static const char *const simulation_keys[] = {
+	"name", "duration", "dt", "integrator", "tolerance", "gravity", "output_rate", NULL
+};
+static const char *const cloth_keys[] = {
+	"nodes", "spacing", "origin", "orientation", "velocity", "weight", "thickness",
+	"modulus_warp", "modulus_weft", "shear_modulus", "bending_warp", "bending_weft",
+	"damping", "spring_damping", NULL
+};
+static const char *const pin_keys[] = { "nodes", NULL };
+static const char *const move_keys[] = { "nodes", "velocity", "path", "start", "stop", NULL };
+static const char *const load_keys[] = { "nodes", "force", "start", "stop", NULL };
+
+static int read_simulation(struct pctx *, const struct group *);
+static int read_cloth(struct pctx *, const struct group *);
+static int read_pin(struct pctx *, const struct group *);
+static int read_move(struct pctx *, const struct group *);
+static int read_load(struct pctx *, const struct group *);
+
+static const struct section_kind {
+	const char *name;
+	const char *const *keys;
+	int once;
+	int (*read)(struct pctx *, const struct group *);
+} section_kinds[] = {
+	{ "simulation", simulation_keys, 1, read_simulation },
+	{ "cloth", cloth_keys, 1, read_cloth },
+	{ "pin", pin_keys, 0, read_pin },
+	{ "move", move_keys, 0, read_move },
+	{ "load", load_keys, 0, read_load },
+};
+#define NSECTION_KINDS (sizeof section_kinds / sizeof section_kinds[0])
+
+static int
+fail(struct pctx *c, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+static int
+fail(struct pctx *c, int line, const char *fmt, ...)
+{
+	char msg[400];
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(msg, sizeof msg, fmt, ap);
+	va_end(ap);
+	err_set(c->err, "%s:%d: %s", c->file, line, msg);
+	return -1;
+}
+
+static const struct ini_entry *
+find(const struct group *g, const char *key)
+{
+	size_t i;
+
+	for (i = g->first; i < g->end; i++)
+		if (strcmp(g->ini->e[i].key, key) == 0)
+			return &g->ini->e[i];
+	return NULL;
+}
+
+static void
+join_keys(char *buf, size_t len, const char *const *keys)
+{
+	size_t off = 0;
+
+	buf[0] = '\0';
+	for (; *keys != NULL && off < len; keys++)
+		off += (size_t)snprintf(buf + off, len - off, "%s%s", off ? ", " : "", *keys);
+}
+
+/* Unknown and repeated keys, before any value is read. */
+static int
+check_keys(struct pctx *c, const struct group *g, const char *const *keys)
+{
+	size_t i, j;
+
+	for (i = g->first; i < g->end; i++) {
+		const struct ini_entry *e = &g->ini->e[i];
+		const char *const *k;
+
+		for (k = keys; *k != NULL; k++)
+			if (strcmp(*k, e->key) == 0)
+				break;
+		if (*k == NULL) {
+			char list[300];
+
+			join_keys(list, sizeof list, keys);
+			return fail(c, e->line, "unknown key '%s' in [%s]; expected one of: %s",
+			    e->key, g->section, list);
+		}
+		for (j = g->first; j < i; j++)
+			if (strcmp(g->ini->e[j].key, e->key) == 0)
+				return fail(c, e->line, "%s: already set at line %d",
+				    e->key, g->ini->e[j].line);
+	}
+	return 0;
+}
+
+static int
+missing(struct pctx *c, const struct group *g, const char *key, const char *what)
+{
+	return fail(c, g->line, "[%s] needs '%s' (%s)", g->section, key, what);
+}
+
+enum bound { ANY, POSITIVE, NONNEGATIVE };
+
+/*
+ * Reads n numbers of dimension dim. Returns 1 if the key was there, 0 if it
+ * is absent and optional, -1 on error (absent and required, or malformed).
+ */
+static int
+get_numbers(struct pctx *c, const struct group *g, const char *key, enum unit_dim dim, int n,
+    enum bound bound, int required, double *out)
+{
+	const struct ini_entry *e = find(g, key);
+	char why[200];
+	int k;
+
+	if (e == NULL)
+		return required ? missing(c, g, key, units_describe(dim)) : 0;
+	if (units_parse(e->value, dim, out, n, why, sizeof why) != 0)
+		return fail(c, e->line, "%s: %s; expected %s%s, got '%s'", key, why,
+		    n > 1 ? "numbers for " : "", units_describe(dim), e->value);
+	for (k = 0; k < n; k++) {
+		if (bound == POSITIVE && !(out[k] > 0))
+			return fail(c, e->line, "%s: expected %s greater than 0, got '%s'", key,
+			    units_describe(dim), e->value);
+		if (bound == NONNEGATIVE && !(out[k] >= 0))
+			return fail(c, e->line, "%s: expected %s of 0 or more, got '%s'", key,
+			    units_describe(dim), e->value);
+	}
+	return 1;
+}
+
+static char *
+xstrdup(const char *s)
+{
+	size_t n = strlen(s) + 1;
+	char *d = malloc(n);
+
+	if (d != NULL)
+		memcpy(d, s, n);
+	return d;
+}
+
+/* ---- [simulation] ---- */
+
+static int
+read_simulation(struct pctx *c, const struct group *g)
+{
+	struct scene *sc = c->sc;
+	const struct ini_entry *e;
+	double gv[3];
+
+	if (get_numbers(c, g, "duration", DIM_TIME, 1, POSITIVE, 1, &sc->duration) < 0)
+		return -1;
+	if ((e = find(g, "name")) != NULL) {
+		free(sc->name);
+		if ((sc->name = xstrdup(e->value)) == NULL)
+			return fail(c, e->line, "out of memory");
+	}
+	if ((e = find(g, "dt")) != NULL && strcmp(e->value, "auto") != 0) {
+		char why[200];
+
+		if (units_parse(e->value, DIM_TIME, &sc->dt, 1, why, sizeof why) != 0 ||
+		    !(sc->dt > 0))
+			return fail(c, e->line, "dt: expected 'auto' or %s greater than 0, got '%s'",
+			    units_describe(DIM_TIME), e->value);
+	}
+	if ((e = find(g, "integrator")) != NULL &&
+	    integrator_from_name(e->value, &sc->integrator) != 0)
+		return fail(c, e->line, "integrator: expected rk4, euler, symplectic-euler, rk2 "
+		    "or dopri5, got '%s'", e->value);
+	if (get_numbers(c, g, "tolerance", DIM_NONE, 1, POSITIVE, 0, &sc->tolerance) < 0)
+		return -1;
+	if ((e = find(g, "gravity")) != NULL) {
+		char why[200];
+
+		/* One value is a magnitude pointing down -y; three are a vector. */
+		if (units_parse(e->value, DIM_ACCEL, gv, 1, why, sizeof why) == 0) {
+			sc->gravity[0] = 0;
+			sc->gravity[1] = -gv[0];
+			sc->gravity[2] = 0;
+		} else if (units_parse(e->value, DIM_ACCEL, gv, 3, why, sizeof why) == 0) {
+			memcpy(sc->gravity, gv, sizeof gv);
+		} else {
+			return fail(c, e->line, "gravity: expected a magnitude (pointing down -y) or "
+			    "a vector gx gy gz, as %s, got '%s'", units_describe(DIM_ACCEL), e->value);
+		}
+	}
+	if (get_numbers(c, g, "output_rate", DIM_RATE, 1, POSITIVE, 0, &sc->output_rate) < 0)
+		return -1;
+	return 0;
+}
+
+/* ---- [cloth] ---- */
+
+static int
+parse_axis(const char *s, double out[3])
+{
+	int sign = 1;
+
+	if (*s == '+' || *s == '-')
+		sign = *s++ == '-' ? -1 : 1;
+	if (s[0] == '\0' || s[1] != '\0' || s[0] < 'x' || s[0] > 'z')
+		return -1;
+	out[0] = out[1] = out[2] = 0;
+	out[s[0] - 'x'] = sign;
+	return 0;
+}
+
+static int
+read_orientation(struct pctx *c, const struct ini_entry *e)
+{
+	struct scene *sc = c->sc;
+	char a[8], b[8], extra[2];
+
+	if (sscanf(e->value, "%7s %7s %1s", a, b, extra) != 2 ||
+	    parse_axis(a, sc->warp_axis) != 0 || parse_axis(b, sc->weft_axis) != 0)
+		return fail(c, e->line, "orientation: expected the warp and weft axes, such as "
+		    "'+x +z' (horizontal) or '+x -y' (hanging), got '%s'", e->value);
+	if (fabs(sc->warp_axis[0] * sc->weft_axis[0] + sc->warp_axis[1] * sc->weft_axis[1] +
+	    sc->warp_axis[2] * sc->weft_axis[2]) > 0)
+		return fail(c, e->line, "orientation: expected two different axes, got '%s'",
+		    e->value);
+	return 0;
+}
+
+static int
+read_bending(struct pctx *c, const struct group *g, const char *key, int dir)
+{
+	struct material *m = &c->sc->mat;
+	const struct ini_entry *e = find(g, key);
+
+	if (e == NULL)
+		return missing(c, g, key, "a bending rigidity such as 5 uN*m, 0 for none, or "
+		    "'derived' for modulus*thickness^3/12");
+	if (strcmp(e->value, "derived") == 0) {
+		m->bending_derived[dir] = true;
+		return 0;
+	}
+	return get_numbers(c, g, key, DIM_BENDING, 1, NONNEGATIVE, 1, &m->bending[dir]) < 0 ? -1 : 0;
+}
+
+static int
+read_cloth(struct pctx *c, const struct group *g)
+{
+	struct scene *sc = c->sc;
+	struct material *m = &sc->mat;
+	const struct ini_entry *e;
+	double nodes[2];
+	int dir;
+
+	if (get_numbers(c, g, "nodes", DIM_NONE, 2, ANY, 1, nodes) < 0)
+		return -1;
+	e = find(g, "nodes");
+	if (nodes[0] != floor(nodes[0]) || nodes[1] != floor(nodes[1]) || nodes[0] < 2 ||
+	    nodes[1] < 2 || nodes[0] > MAX_GRID || nodes[1] > MAX_GRID ||
+	    nodes[0] * nodes[1] > MAX_NODES)
+		return fail(c, e->line, "nodes: expected two whole numbers nu nv, each from 2 to %d "
+		    "(%d nodes at most), got '%s'", MAX_GRID, MAX_NODES, e->value);
+	sc->nu = (int)nodes[0];
+	sc->nv = (int)nodes[1];
+
+	if (get_numbers(c, g, "spacing", DIM_LENGTH, 1, POSITIVE, 1, &sc->spacing) < 0 ||
+	    get_numbers(c, g, "origin", DIM_LENGTH, 3, ANY, 0, sc->origin) < 0 ||
+	    get_numbers(c, g, "velocity", DIM_VELOCITY, 3, ANY, 0, sc->velocity) < 0 ||
+	    get_numbers(c, g, "weight", DIM_AREAL_DENSITY, 1, POSITIVE, 1, &m->weight) < 0 ||
+	    get_numbers(c, g, "thickness", DIM_LENGTH, 1, POSITIVE, 1, &m->thickness) < 0 ||
+	    get_numbers(c, g, "modulus_warp", DIM_PRESSURE, 1, POSITIVE, 1, &m->modulus[0]) < 0 ||
+	    get_numbers(c, g, "modulus_weft", DIM_PRESSURE, 1, POSITIVE, 1, &m->modulus[1]) < 0 ||
+	    get_numbers(c, g, "shear_modulus", DIM_PRESSURE, 1, NONNEGATIVE, 1,
+		&m->shear_modulus) < 0 ||
+	    read_bending(c, g, "bending_warp", 0) < 0 ||
+	    read_bending(c, g, "bending_weft", 1) < 0 ||
+	    get_numbers(c, g, "damping", DIM_RATE, 1, NONNEGATIVE, 0, &m->damping) < 0 ||
+	    get_numbers(c, g, "spring_damping", DIM_TIME, 1, NONNEGATIVE, 0,
+		&m->spring_damping) < 0)
+		return -1;
+	if ((e = find(g, "orientation")) != NULL && read_orientation(c, e) != 0)
+		return -1;
+	for (dir = 0; dir < 2; dir++)
+		if (m->bending_derived[dir])	/* a plate's E*t^3/12, Poisson ignored */
+			m->bending[dir] = m->modulus[dir] * pow(m->thickness, 3) / 12;
+	return 0;
+}
+
+/* ---- node sets: "I J, I J, ..." with I, J an index, a..b or * ---- */
+
+static int
+add_raw(struct pctx *c, int line, int is_load, size_t index, const char *text)
+{
+	if (c->nraw == c->rawcap) {
+		size_t cap = c->rawcap ? 2 * c->rawcap : 16;
+		struct raw_sel *r = realloc(c->raw, cap * sizeof *r);
+
+		if (r == NULL)
+			return fail(c, line, "out of memory");
+		c->raw = r;
+		c->rawcap = cap;
+	}
+	c->raw[c->nraw] = (struct raw_sel){ line, is_load, index, xstrdup(text) };
+	if (c->raw[c->nraw].text == NULL)
+		return fail(c, line, "out of memory");
+	c->nraw++;
+	return 0;
+}
+
+static int
+parse_index(const char **sp, int n, int *out)
+{
+	char *end;
+	long v;
+
+	errno = 0;
+	v = strtol(*sp, &end, 10);
+	if (end == *sp || errno != 0)
+		return -1;
+	*sp = end;
+	if (v < 0)
+		v += n;		/* -1 is the last node */
+	if (v < 0 || v >= n)
+		return -2;
+	*out = (int)v;
+	return 0;
+}
+
+/* One of "*", "K" or "A..B" into [lo, hi]. */
+static int
+parse_range(const char **sp, int n, int *lo, int *hi)
+{
+	const char *s = *sp;
+	int r;
+
+	while (isspace((unsigned char)*s))
+		s++;
+	if (*s == '*') {
+		*lo = 0;
+		*hi = n - 1;
+		*sp = s + 1;
+		return 0;
+	}
+	if ((r = parse_index(&s, n, lo)) != 0)
+		return r;
+	*hi = *lo;
+	if (s[0] == '.' && s[1] == '.') {
+		s += 2;
+		if ((r = parse_index(&s, n, hi)) != 0)
+			return r;
+		if (*hi < *lo)
+			return -1;
+	}
+	*sp = s;
+	return 0;
+}
+
+static int
+resolve_selector(struct pctx *c, const struct raw_sel *r)
+{
+	struct node_set *set = r->is_load ? &c->sc->loads[r->index].nodes :
+	    &c->sc->motions[r->index].nodes;
+	const char *s = r->text;
+
+	for (;;) {
+		struct node_block b;
+		struct node_block *nb;
+		int e1, e2 = 0;
+
+		if ((e1 = parse_range(&s, c->sc->nu, &b.i0, &b.i1)) == 0)
+			e2 = parse_range(&s, c->sc->nv, &b.j0, &b.j1);
+		while (isspace((unsigned char)*s))
+			s++;
+		if (e1 == -2 || e2 == -2)
+			return fail(c, r->line, "nodes: index out of range in '%s'; the grid is "
+			    "%d x %d (i from 0 to %d, j from 0 to %d; -1 is the last)", r->text,
+			    c->sc->nu, c->sc->nv, c->sc->nu - 1, c->sc->nv - 1);
+		if (e1 != 0 || e2 != 0 || (*s != ',' && *s != '\0'))
+			return fail(c, r->line, "nodes: expected pairs 'I J' separated by commas, "
+			    "each an index, a range A..B or *, such as '0 *, -1 0', got '%s'", r->text);
+		if ((nb = realloc(set->b, (set->n + 1) * sizeof *nb)) == NULL)
+			return fail(c, r->line, "out of memory");
+		set->b = nb;
+		set->b[set->n++] = b;
+		if (*s == '\0')
+			return 0;
+		s++;
+	}
+}
+
+static int
+read_nodes(struct pctx *c, const struct group *g, int is_load, size_t index)
+{
+	const struct ini_entry *e = find(g, "nodes");
+
+	if (e == NULL)
+		return missing(c, g, "nodes", "node pairs 'I J' such as '0 *'");
+	return add_raw(c, e->line, is_load, index, e->value);
+}
+
+static int
+read_window(struct pctx *c, const struct group *g, double *start, double *stop)
+{
+	*start = 0;
+	*stop = INFINITY;
+	if (get_numbers(c, g, "start", DIM_TIME, 1, NONNEGATIVE, 0, start) < 0 ||
+	    get_numbers(c, g, "stop", DIM_TIME, 1, NONNEGATIVE, 0, stop) < 0)
+		return -1;
+	if (!(*stop > *start))
+		return fail(c, find(g, "stop")->line, "stop: expected a time after start (%g s)",
+		    *start);
+	return 0;
+}
+
+/* ---- [pin], [move], [load] ---- */
+
+static struct scene_motion *
+new_motion(struct pctx *c, const struct group *g)
+{
+	struct scene *sc = c->sc;
+	struct scene_motion *m = realloc(sc->motions, (sc->nmotions + 1) * sizeof *m);
+
+	if (m == NULL) {
+		fail(c, g->line, "out of memory");
+		return NULL;
+	}
+	sc->motions = m;
+	m = &sc->motions[sc->nmotions++];
+	memset(m, 0, sizeof *m);
+	m->line = g->line;
+	m->stop = INFINITY;
+	return m;
+}
+
+static int
+read_pin(struct pctx *c, const struct group *g)
+{
+	struct scene_motion *m = new_motion(c, g);
+
+	if (m == NULL)
+		return -1;
+	m->kind = MOTION_PIN;
+	return read_nodes(c, g, 0, c->sc->nmotions - 1);
+}
+
+static int
+read_path(struct pctx *c, const struct ini_entry *e, struct scene_motion *m)
+{
+	const char *s = e->value;
+	double prev = 0;
+
+	for (;;) {
+		const char *comma = strchr(s, ',');
+		size_t len = comma ? (size_t)(comma - s) : strlen(s);
+		char point[256], why[200];
+		double *p;
+
+		if (len >= sizeof point)
+			return fail(c, e->line, "path: point too long");
+		memcpy(point, s, len);
+		point[len] = '\0';
+		if ((p = realloc(m->path, (m->npath + 1) * 4 * sizeof *p)) == NULL)
+			return fail(c, e->line, "out of memory");
+		m->path = p;
+		p += 4 * m->npath;
+		if (units_parse(point, DIM_NONE, p, 4, why, sizeof why) != 0)
+			return fail(c, e->line, "path: expected points 't dx dy dz' in s and m, "
+			    "separated by commas, got '%s'", point);
+		if (!(p[0] > prev))
+			return fail(c, e->line, "path: expected times after 0 that increase, got "
+			    "%g after %g", p[0], prev);
+		prev = p[0];
+		m->npath++;
+		if (comma == NULL)
+			return 0;
+		s = comma + 1;
+	}
+}
+
+static int
+read_move(struct pctx *c, const struct group *g)
+{
+	struct scene_motion *m = new_motion(c, g);
+	const struct ini_entry *vel, *path;
+	int r;
+
+	if (m == NULL || read_nodes(c, g, 0, c->sc->nmotions - 1) < 0 ||
+	    read_window(c, g, &m->start, &m->stop) < 0)
+		return -1;
+	vel = find(g, "velocity");
+	path = find(g, "path");
+	if ((vel == NULL) == (path == NULL))
+		return fail(c, g->line, "[move] needs either 'velocity' (vx vy vz) or 'path' "
+		    "(t dx dy dz, ...), not %s", vel ? "both" : "neither");
+	if (vel != NULL) {
+		m->kind = MOTION_VELOCITY;
+		r = get_numbers(c, g, "velocity", DIM_VELOCITY, 3, ANY, 1, m->velocity);
+		return r < 0 ? -1 : 0;
+	}
+	if (find(g, "start") || find(g, "stop"))
+		return fail(c, g->line, "[move]: a path sets its own times; expected no start or stop");
+	m->kind = MOTION_PATH;
+	return read_path(c, path, m);
+}
+
+static int
+read_load(struct pctx *c, const struct group *g)
+{
+	struct scene *sc = c->sc;
+	struct scene_load *l = realloc(sc->loads, (sc->nloads + 1) * sizeof *l);
+
+	if (l == NULL)
+		return fail(c, g->line, "out of memory");
+	sc->loads = l;
+	l = &sc->loads[sc->nloads++];
+	memset(l, 0, sizeof *l);
+	l->line = g->line;
+	if (read_nodes(c, g, 1, sc->nloads - 1) < 0 || read_window(c, g, &l->start, &l->stop) < 0 ||
+	    get_numbers(c, g, "force", DIM_FORCE, 3, ANY, 1, l->force) < 0)
+		return -1;
+	return 0;
+}
+
+/* ---- the whole file ---- */
+
+static void
+set_defaults(struct scene *sc)
+{
+	sc->dt = 0;
+	sc->integrator = INTEG_RK4;
+	sc->tolerance = 1e-6;
+	sc->gravity[1] = -9.80665;
+	sc->output_rate = 50;
+	sc->warp_axis[0] = 1;
+	sc->weft_axis[2] = 1;
+}
+
+static char *
+default_name(const char *path)
+{
+	const char *base = strrchr(path, '/');
+	char *name, *dot;
+
+	name = xstrdup(base != NULL ? base + 1 : path);
+	if (name != NULL && (dot = strrchr(name, '.')) != NULL && dot != name)
+		*dot = '\0';
+	return name;
+}
+
+int
+scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err)
+{
+	struct pctx c = { path, err, sc, NULL, 0, 0 };
+	int seen[NSECTION_KINDS] = { 0 };
+	struct ini ini;
+	size_t i, k;
+	int rc = -1;
+
+	memset(sc, 0, sizeof *sc);
+	set_defaults(sc);
+	if ((sc->path = xstrdup(path)) == NULL || (sc->text = xstrdup(text)) == NULL ||
+	    (sc->name = default_name(path)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		scene_free(sc);
+		return -1;
+	}
+	if (strlen(text) > MAX_SCENE_BYTES) {
+		err_set(err, "%s:1: expected a scene of at most %d bytes", path, MAX_SCENE_BYTES);
+		scene_free(sc);
+		return -1;
+	}
+	if (ini_parse(&ini, path, text, err) != 0) {
+		scene_free(sc);
+		return -1;
+	}
+
+	for (i = 0; i < ini.n; i = k) {
+		const struct ini_entry *h = &ini.e[i];
+		struct group g = { &ini, i + 1, i + 1, h->section, h->line };
+		size_t s;
+
+		for (k = i + 1; k < ini.n && ini.e[k].key != NULL; k++)
+			;
+		g.end = k;
+		for (s = 0; s < NSECTION_KINDS; s++)
+			if (strcmp(section_kinds[s].name, h->section) == 0)
+				break;
+		if (s == NSECTION_KINDS) {
+			fail(&c, h->line, "unknown section [%s]; expected [simulation], [cloth], "
+			    "[pin], [move] or [load]", h->section);
+			goto out;
+		}
+		if (section_kinds[s].once && seen[s]) {
+			fail(&c, h->line, "[%s] given twice; expected it once", h->section);
+			goto out;
+		}
+		seen[s] = h->line;
+		if (check_keys(&c, &g, section_kinds[s].keys) != 0 ||
+		    section_kinds[s].read(&c, &g) != 0)
+			goto out;
+	}
+	for (i = 0; i < 2; i++)		/* [simulation] and [cloth] */
+		if (!seen[i]) {
+			fail(&c, ini.last_line > 0 ? ini.last_line : 1,
+			    "expected a [%s] section", section_kinds[i].name);
+			goto out;
+		}
+	for (i = 0; i < c.nraw; i++)
+		if (resolve_selector(&c, &c.raw[i]) != 0)
+			goto out;
+	rc = 0;
+out:
+	for (i = 0; i < c.nraw; i++)
+		free(c.raw[i].text);
+	free(c.raw);
+	ini_free(&ini);
+	if (rc != 0)
+		scene_free(sc);
+	return rc;
+}
+
+int
+scene_load(struct scene *sc, const char *path, struct drape_err *err)
+{
+	FILE *f;
+	char *buf = NULL;
+	size_t len = 0, cap = 0, got;
+	int rc;
+
+	memset(sc, 0, sizeof *sc);
+	if ((f = fopen(path, "rb")) == NULL) {
+		err_set(err, "%s: cannot open: %s", path, strerror(errno));
+		return -1;
+	}
+	do {
+		if (cap - len < 4096) {
+			char *nb;
+
+			cap = cap ? 2 * cap : 16384;
+			if (cap > (size_t)MAX_SCENE_BYTES + 16384 || (nb = realloc(buf, cap)) == NULL) {
+				err_set(err, "%s:1: expected a scene of at most %d bytes", path,
+				    MAX_SCENE_BYTES);
+				free(buf);
+				fclose(f);
+				return -1;
+			}
+			buf = nb;
+		}
+		got = fread(buf + len, 1, cap - len - 1, f);
+		len += got;
+	} while (got > 0);
+	if (ferror(f)) {
+		err_set(err, "%s: read error: %s", path, strerror(errno));
+		free(buf);
+		fclose(f);
+		return -1;
+	}
+	fclose(f);
+	buf[len] = '\0';
+	if (memchr(buf, '\0', len) != NULL) {
+		err_set(err, "%s:1: expected a text file, found a NUL byte", path);
+		free(buf);
+		return -1;
+	}
+	rc = scene_parse(sc, path, buf, err);
+	free(buf);
+	return rc;
+}
+
+int
+node_set_fits(const struct node_set *set, int nu, int nv)
+{
+	size_t b;
+
+	for (b = 0; b < set->n; b++)
+		if (set->b[b].i0 < 0 || set->b[b].i1 >= nu || set->b[b].i0 > set->b[b].i1 ||
+		    set->b[b].j0 < 0 || set->b[b].j1 >= nv || set->b[b].j0 > set->b[b].j1)
+			return 0;
+	return 1;
+}
+
+void
+scene_free(struct scene *sc)
+{
+	size_t i;
+
+	for (i = 0; i < sc->nmotions; i++) {
+		free(sc->motions[i].nodes.b);
+		free(sc->motions[i].path);
+	}
+	for (i = 0; i < sc->nloads; i++)
+		free(sc->loads[i].nodes.b);
+	free(sc->motions);
+	free(sc->loads);
+	free(sc->path);
+	free(sc->name);
+	free(sc->text);
+	memset(sc, 0, sizeof *sc);
+}

@@ -1,0 +1,88 @@
+/* scene.h: a scene file parsed and checked; every value in SI units. */
+#ifndef DRAPE_SCENE_H
+#define DRAPE_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "err.h"
+#include "integrate.h"
+
+/* A block of grid nodes, i along the warp, j along the weft, inclusive. */
+struct node_block {
+	int i0, i1, j0, j1;
+};
+
+struct node_set {
+	struct node_block *b;
+	size_t n;
+};
+
+enum motion_kind {
+	MOTION_PIN,		/* held where it starts */
+	MOTION_VELOCITY,	/* constant velocity between start and stop */
+	MOTION_PATH,		/* piecewise-linear displacement through (t, d) points */
+};
+
+struct scene_motion {
+	int line;
+	enum motion_kind kind;
+	struct node_set nodes;
+	double velocity[3];
+	double start, stop;	/* stop = INFINITY when never */
+	double *path;		/* npath points of t, dx, dy, dz; (0, 0) is implied */
+	size_t npath;
+};
+
+struct scene_load {
+	int line;
+	struct node_set nodes;
+	double force[3];	/* N, on each node of the set */
+	double start, stop;
+};
+
+struct material {
+	double weight;		/* kg/m2 */
+	double thickness;	/* m */
+	double modulus[2];	/* Pa, warp and weft */
+	double shear_modulus;	/* Pa */
+	double bending[2];	/* N*m, warp and weft, after derivation */
+	bool bending_derived[2];	/* from modulus*thickness^3/12 */
+	double damping;		/* 1/s, on absolute velocity */
+	double spring_damping;	/* s, dashpot c = spring_damping * k */
+};
+
+struct scene {
+	char *path;
+	char *name;
+	char *text;		/* the source, verbatim */
+
+	double duration;
+	double dt;		/* 0 when auto */
+	enum integrator_kind integrator;
+	double tolerance;
+	double gravity[3];
+	double output_rate;
+
+	int nu, nv;
+	double spacing;
+	double origin[3];
+	double warp_axis[3], weft_axis[3];
+	double velocity[3];	/* initial, of every node */
+	struct material mat;
+
+	struct scene_motion *motions;
+	size_t nmotions;
+	struct scene_load *loads;
+	size_t nloads;
+};
+
+/* 1 if every block of the set lies on an nu x nv grid. */
+int node_set_fits(const struct node_set *set, int nu, int nv);
+
+/* Both return 0, or -1 with "FILE:LINE: what was expected" in err. */
+int scene_load(struct scene *sc, const char *path, struct drape_err *err);
+int scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err);
+void scene_free(struct scene *sc);
+
+#endif

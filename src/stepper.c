@@ -1,0 +1,207 @@
+/* stepper.c: the order of one step, and the state it advances. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "stepper.h"
+#include "vec3.h"
+
+/* dy/dt = (v, a); held nodes follow their prescribed velocity, unforced. */
+static void
+rhs(void *ctx, double t, const double *y, double *dy)
+{
+	struct stepper *st = ctx;
+	size_t n3 = 3 * (size_t)st->cl.n;
+	int k;
+
+	memcpy(dy, y + n3, n3 * sizeof *dy);
+	forces_accel(&st->fo, t, y, y + n3, dy + n3);
+	if (st->pr.nnodes == 0)
+		return;
+	prescribed_apply(&st->pr, &st->cl, t, NULL, dy);
+	for (k = 0; k < st->pr.nnodes; k++)
+		v3_store(dy + n3 + 3 * st->pr.node[k], v3(0, 0, 0));
+}
+
+double
+stepper_auto_dt(enum integrator_kind kind, double omega, double damping, double spring_damping)
+{
+	/* The fastest mode's eigenvalue is at most omega in the imaginary
+	 * direction plus the damping rates on the real axis. Take half the
+	 * method's stability interval: sqrt 8 for RK4, 2 for the others
+	 * (their real-axis limit; explicit Euler and RK2 have none on the
+	 * imaginary axis, so undamped they grow slowly at any step). */
+	double lam = omega + damping + spring_damping * omega * omega;
+	double limit = kind == INTEG_RK4 ? integrator_imag_limit(kind) : 2;
+
+	return 0.5 * limit / lam;
+}
+
+int
+stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
+{
+	size_t n3;
+	double extent, vscale, mass = 0;
+	int p;
+
+	memset(st, 0, sizeof *st);
+	st->sc = sc;
+	if (cloth_build(&st->cl, sc, err) != 0)
+		return -1;
+	if (prescribed_build(&st->pr, sc, &st->cl, err) != 0 ||
+	    forces_init(&st->fo, sc, &st->cl, err) != 0)
+		goto fail;
+	cloth_clamp_hinges(&st->cl, st->pr.held);
+	n3 = 3 * (size_t)st->cl.n;
+	if (integrator_init(&st->in, sc->integrator, 2 * n3, sc->tolerance) != 0 ||
+	    (st->y = malloc(2 * n3 * sizeof *st->y)) == NULL ||
+	    (st->y_next = malloc(2 * n3 * sizeof *st->y_next)) == NULL) {
+		err_set(err, "%s: out of memory", sc->path);
+		goto fail;
+	}
+	memcpy(st->y, st->cl.x0, n3 * sizeof *st->y);
+	for (p = 0; p < st->cl.n; p++)
+		v3_store(st->y + n3 + 3 * p, v3_load(sc->velocity));
+	prescribed_apply(&st->pr, &st->cl, 0, st->y, st->y + n3);
+
+	st->t_end = sc->duration;
+	st->omega = cloth_omega_bound(&st->cl);
+	st->dt_auto = sc->dt == 0;
+	st->dt_set = st->dt_auto ? stepper_auto_dt(sc->integrator, st->omega, sc->mat.damping,
+	    sc->mat.spring_damping) : sc->dt;
+	st->dt = st->dt_set;
+	if (!(st->dt > 0) || !isfinite(st->dt)) {
+		err_set(err, "%s: cannot choose a time step (the stiffness bound is %g rad/s); "
+		    "set dt in [simulation]", sc->path, st->omega);
+		goto fail;
+	}
+
+	/* Speeds a run can reach without blowing up: falling over the cloth's
+	 * size, prescribed motion, loads acting all run long; 1000 times that
+	 * is a runaway. */
+	for (p = 0; p < st->cl.n; p++)
+		mass += st->cl.mass[p];
+	extent = st->cl.h * hypot(st->cl.nu - 1, st->cl.nv - 1);
+	vscale = 1 + sqrt(2 * v3_len(v3_load(sc->gravity)) * extent) +
+	    v3_len(v3_load(sc->velocity)) + prescribed_max_speed(&st->pr) +
+	    forces_max_load(&st->fo) * (double)st->cl.n / mass * sc->duration;
+	st->v_limit = 1000 * vscale;
+	return 0;
+fail:
+	stepper_free(st);
+	return -1;
+}
+
+void
+stepper_free(struct stepper *st)
+{
+	integrator_free(&st->in);
+	forces_free(&st->fo);
+	prescribed_free(&st->pr);
+	cloth_free(&st->cl);
+	free(st->y);
+	free(st->y_next);
+	memset(st, 0, sizeof *st);
+}
+
+bool
+stepper_done(const struct stepper *st)
+{
+	return st->t >= st->t_end;
+}
+
+/* The first node (lowest number) that is not finite or too fast. */
+static int
+find_blowup(const struct stepper *st, const double *y, char *why, size_t len)
+{
+	size_t n3 = 3 * (size_t)st->cl.n;
+	double lim2 = st->v_limit * st->v_limit;
+	int p;
+
+	for (p = 0; p < st->cl.n; p++) {
+		vec3 x = v3_load(y + 3 * p), v = v3_load(y + n3 + 3 * p);
+		double v2 = v3_dot(v, v);
+
+		if (!isfinite(v3_dot(x, x)) || !isfinite(v2)) {
+			snprintf(why, len, "its position or velocity is not finite");
+			return p;
+		}
+		if (v2 > lim2) {
+			snprintf(why, len, "runaway energy: it moves at %.3g m/s, over the %.3g m/s "
+			    "this scene can reach", sqrt(v2), st->v_limit);
+			return p;
+		}
+	}
+	return -1;
+}
+
+int
+stepper_step(struct stepper *st, struct blowup *bl)
+{
+	size_t n3 = 3 * (size_t)st->cl.n;
+	double h = st->dt, h_next, remaining = st->t_end - st->t, t_new;
+	int last = 0, bad;
+	double *swap;
+
+	if (h >= remaining * (1 - 1e-12)) {	/* land on the end exactly */
+		h = remaining;
+		last = 1;
+	}
+	/* 1. integrate: consistent state k -> predicted state k+1 */
+	if (integrator_step(&st->in, rhs, st, st->t, st->y, st->y_next, &h, &h_next) != 0) {
+		bl->step = st->step;
+		bl->t = st->t;
+		bl->node = bl->i = bl->j = -1;
+		snprintf(bl->why, sizeof bl->why, "the adaptive step fell below %g s", h);
+		return 1;
+	}
+	/* A fixed step's time is a product, not a sum of rounded steps, so
+	 * that t stays as exact as the positions it goes with. */
+	if (last && h == remaining)
+		t_new = st->t_end;
+	else if (st->in.kind != INTEG_DOPRI5)
+		t_new = (double)(st->step + 1) * st->dt_set;
+	else
+		t_new = st->t + h;
+	/* 2. specified displacements */
+	prescribed_apply(&st->pr, &st->cl, t_new, st->y_next, st->y_next + n3);
+	/* 3. blow-up check before anything is committed */
+	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0) {
+		bl->step = st->step;
+		bl->t = st->t;
+		bl->node = bad;
+		bl->i = bad % st->cl.nu;
+		bl->j = bad / st->cl.nu;
+		return 1;
+	}
+	/* 4. commit */
+	swap = st->y;
+	st->y = st->y_next;
+	st->y_next = swap;
+	st->t = t_new;
+	st->step++;
+	st->dt = st->in.kind == INTEG_DOPRI5 ? fmin(h_next, st->dt_set) : st->dt_set;
+	return 0;
+}
+
+void
+stepper_energy(const struct stepper *st, struct energy *e)
+{
+	forces_energy(&st->fo, st->t, stepper_x(st), stepper_v(st), e);
+}
+
+uint64_t
+stepper_hash(const struct stepper *st)
+{
+	const unsigned char *b = (const unsigned char *)st->y;
+	size_t len = 6 * (size_t)st->cl.n * sizeof *st->y, i;
+	uint64_t h = 0xcbf29ce484222325ULL;
+
+	for (i = 0; i < len; i++)
+		h = (h ^ b[i]) * 0x100000001b3ULL;
+	b = (const unsigned char *)&st->t;
+	for (i = 0; i < sizeof st->t; i++)
+		h = (h ^ b[i]) * 0x100000001b3ULL;
+	return h;
+}

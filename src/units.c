@@ -1,0 +1,108 @@
+/* units.c: the unit table. Units are matched exactly, case-sensitively. */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "units.h"
+
+struct unit {
+	enum unit_dim dim;
+	const char *name;
+	double factor;		/* to SI */
+};
+
+#define GF 9.80665e-3		/* gram-force in N */
+
+static const struct unit units[] = {
+	{ DIM_LENGTH, "m", 1 }, { DIM_LENGTH, "cm", 1e-2 }, { DIM_LENGTH, "mm", 1e-3 },
+	{ DIM_LENGTH, "um", 1e-6 },
+	{ DIM_TIME, "s", 1 }, { DIM_TIME, "ms", 1e-3 }, { DIM_TIME, "us", 1e-6 },
+	{ DIM_AREAL_DENSITY, "kg/m2", 1 }, { DIM_AREAL_DENSITY, "g/m2", 1e-3 },
+	{ DIM_AREAL_DENSITY, "gsm", 1e-3 }, { DIM_AREAL_DENSITY, "mg/cm2", 1e-2 },
+	{ DIM_PRESSURE, "Pa", 1 }, { DIM_PRESSURE, "kPa", 1e3 }, { DIM_PRESSURE, "MPa", 1e6 },
+	{ DIM_PRESSURE, "GPa", 1e9 },
+	{ DIM_BENDING, "N*m", 1 }, { DIM_BENDING, "mN*m", 1e-3 }, { DIM_BENDING, "uN*m", 1e-6 },
+	/* Kawabata's KES-FB2 reports B in gf*cm2/cm. */
+	{ DIM_BENDING, "gf*cm2/cm", GF * 1e-4 / 1e-2 },
+	{ DIM_FORCE, "N", 1 }, { DIM_FORCE, "mN", 1e-3 }, { DIM_FORCE, "gf", GF },
+	{ DIM_VELOCITY, "m/s", 1 }, { DIM_VELOCITY, "cm/s", 1e-2 }, { DIM_VELOCITY, "mm/s", 1e-3 },
+	{ DIM_ACCEL, "m/s2", 1 },
+	{ DIM_RATE, "1/s", 1 }, { DIM_RATE, "/s", 1 }, { DIM_RATE, "Hz", 1 },
+};
+
+const char *
+units_describe(enum unit_dim dim)
+{
+	switch (dim) {
+	case DIM_NONE: return "a number";
+	case DIM_LENGTH: return "a length (m, cm, mm, um)";
+	case DIM_TIME: return "a time (s, ms, us)";
+	case DIM_AREAL_DENSITY: return "a weight per area (g/m2, gsm, mg/cm2, kg/m2)";
+	case DIM_PRESSURE: return "a modulus (Pa, kPa, MPa, GPa)";
+	case DIM_BENDING: return "a bending rigidity (N*m, mN*m, uN*m, gf*cm2/cm)";
+	case DIM_FORCE: return "a force (N, mN, gf)";
+	case DIM_VELOCITY: return "a velocity (m/s, cm/s, mm/s)";
+	case DIM_ACCEL: return "an acceleration (m/s2)";
+	case DIM_RATE: return "a rate (1/s, /s, Hz)";
+	}
+	return "a value";
+}
+
+static int
+number_start(const char *s)
+{
+	return isdigit((unsigned char)s[0]) || s[0] == '.' ||
+	    ((s[0] == '-' || s[0] == '+') && (isdigit((unsigned char)s[1]) || s[1] == '.'));
+}
+
+int
+units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, size_t whylen)
+{
+	double factor = 1;
+	char *end;
+	int k;
+
+	for (k = 0; k < n; k++) {
+		while (isspace((unsigned char)*s))
+			s++;
+		if (!number_start(s)) {
+			snprintf(why, whylen, k == 0 ? "expected a number" :
+			    "expected %d numbers", n);
+			return -1;
+		}
+		out[k] = strtod(s, &end);
+		if (!isfinite(out[k])) {
+			snprintf(why, whylen, "expected a finite number");
+			return -1;
+		}
+		if (*end != '\0' && !isspace((unsigned char)*end) && !isalpha((unsigned char)*end) &&
+		    *end != '/' && *end != '*') {
+			snprintf(why, whylen, "expected a number, got '%s'", s);
+			return -1;
+		}
+		s = end;
+	}
+	while (isspace((unsigned char)*s))
+		s++;
+	if (*s != '\0') {
+		size_t i;
+
+		if (number_start(s)) {
+			snprintf(why, whylen, "expected %d number%s, got more", n, n == 1 ? "" : "s");
+			return -1;
+		}
+		for (i = 0; i < sizeof units / sizeof units[0]; i++)
+			if (units[i].dim == dim && strcmp(units[i].name, s) == 0)
+				break;
+		if (i == sizeof units / sizeof units[0]) {
+			snprintf(why, whylen, "unknown unit '%s' for %s", s, units_describe(dim));
+			return -1;
+		}
+		factor = units[i].factor;
+	}
+	for (k = 0; k < n; k++)
+		out[k] *= factor;
+	return 0;
+}

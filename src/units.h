@@ -1,0 +1,29 @@
+/* units.h: numbers with an optional unit, converted to SI. */
+#ifndef DRAPE_UNITS_H
+#define DRAPE_UNITS_H
+
+#include <stddef.h>
+
+enum unit_dim {
+	DIM_NONE,		/* a pure number: no unit accepted */
+	DIM_LENGTH,		/* m */
+	DIM_TIME,		/* s */
+	DIM_AREAL_DENSITY,	/* kg/m2 */
+	DIM_PRESSURE,		/* Pa */
+	DIM_BENDING,		/* N*m (bending rigidity per unit width) */
+	DIM_FORCE,		/* N */
+	DIM_VELOCITY,		/* m/s */
+	DIM_ACCEL,		/* m/s2 */
+	DIM_RATE,		/* 1/s */
+};
+
+/*
+ * Parses exactly n finite numbers followed by an optional unit of dimension
+ * dim (a missing unit means SI). Returns 0, or -1 with the reason in why.
+ */
+int units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, size_t whylen);
+
+/* "a length (m, cm, mm, um)" and the like, for error messages. */
+const char *units_describe(enum unit_dim dim);
+
+#endif

@@ -1,0 +1,34 @@
+/* vec3.h: inline 3-vector arithmetic on a small value type. State arrays stay
+ * flat doubles (x0 y0 z0 x1 ...); v3_load/v3_store move between the two. */
+#ifndef DRAPE_VEC3_H
+#define DRAPE_VEC3_H
+
+#include <math.h>
+
+#define V3_PI 3.14159265358979323846
+
+typedef struct vec3 {
+	double x, y, z;
+} vec3;
+
+static inline vec3 v3(double x, double y, double z) { return (vec3){ x, y, z }; }
+static inline vec3 v3_load(const double *p) { return (vec3){ p[0], p[1], p[2] }; }
+static inline void v3_store(double *p, vec3 a) { p[0] = a.x; p[1] = a.y; p[2] = a.z; }
+static inline void v3_addto(double *p, vec3 a) { p[0] += a.x; p[1] += a.y; p[2] += a.z; }
+static inline vec3 v3_add(vec3 a, vec3 b) { return (vec3){ a.x + b.x, a.y + b.y, a.z + b.z }; }
+static inline vec3 v3_sub(vec3 a, vec3 b) { return (vec3){ a.x - b.x, a.y - b.y, a.z - b.z }; }
+static inline vec3 v3_scale(vec3 a, double s) { return (vec3){ a.x * s, a.y * s, a.z * s }; }
+static inline vec3 v3_neg(vec3 a) { return (vec3){ -a.x, -a.y, -a.z }; }
+static inline double v3_dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline vec3 v3_cross(vec3 a, vec3 b)
+{
+	return (vec3){ a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
+}
+static inline double v3_len(vec3 a) { return sqrt(v3_dot(a, a)); }
+/* a + s*b, the workhorse of the integrators and force loops. */
+static inline vec3 v3_madd(vec3 a, vec3 b, double s)
+{
+	return (vec3){ a.x + s * b.x, a.y + s * b.y, a.z + s * b.z };
+}
+
+#endif

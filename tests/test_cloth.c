@@ -1,0 +1,244 @@
+/* test_cloth.c: the network's topology, masses and stiffnesses, and the
+ * forces checked against the energy's gradient. */
+#include <math.h>
+
+#include "testutil.h"
+#include "cloth.h"
+#include "forces.h"
+#include "vec3.h"
+
+#define CLOTH(nu, nv, extra) \
+	"[simulation]\nduration = 1\n[cloth]\nnodes = " #nu " " #nv "\nspacing = 10 mm\n" \
+	"weight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\nmodulus_weft = 10 MPa\n" \
+	extra
+
+#define FULL "shear_modulus = 0.2 MPa\nbending_warp = 10 uN*m\nbending_weft = 5 uN*m\n"
+
+static void
+build(struct cloth *cl, struct scene *sc, const char *text)
+{
+	struct drape_err err;
+
+	parse_text(sc, text);
+	if (cloth_build(cl, sc, &err) != 0)
+		fail_msg("%s", err.msg);
+}
+
+static void
+counts_and_masses(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+	double total = 0;
+	int p;
+
+	(void)state;
+	build(&cl, &sc, CLOTH(7, 5, FULL));
+	assert_int_equal(cl.n, 35);
+	assert_int_equal(cl.nsprings, 6 * 5 + 7 * 4);
+	assert_int_equal(cl.ncorners, 4 * 6 * 4);
+	assert_int_equal(cl.nhinges, 5 * 5 + 7 * 3);
+	assert_int_equal(cl.ntri, 2 * 6 * 4);
+	assert_int_equal(cl.nedges, 6 * 5 + 7 * 4 + 6 * 4);
+	for (p = 0; p < cl.n; p++)
+		total += cl.mass[p];
+	assert_double_equal(total, 0.1 * 0.06 * 0.04, 1e-15);
+	assert_double_equal(cl.mass[cloth_node(&cl, 0, 0)], 0.1 * 0.005 * 0.005, 1e-15);
+	assert_double_equal(cl.mass[cloth_node(&cl, 3, 2)], 0.1 * 0.01 * 0.01, 1e-15);
+	/* E*t over the tributary width: half on the border lines */
+	assert_double_equal(cl.springs[0].k, 20e6 * 0.5e-3 / 2, 1e-9);
+	assert_double_equal(cl.springs[6].k, 20e6 * 0.5e-3, 1e-9);	/* j = 1 */
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
+static void
+zero_properties_build_nothing(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+
+	(void)state;
+	build(&cl, &sc, CLOTH(6, 6, "shear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n"));
+	assert_int_equal(cl.ncorners, 0);
+	assert_int_equal(cl.nhinges, 0);
+	assert_null(cl.corners);
+	assert_null(cl.hinges);
+	cloth_free(&cl);
+	scene_free(&sc);
+	build(&cl, &sc, CLOTH(6, 6, "shear_modulus = 0\nbending_warp = 1 uN*m\nbending_weft = 0\n"));
+	assert_int_equal(cl.nhinges, 4 * 6);	/* warp lines only */
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
+static void
+adjacency_is_consistent(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+	size_t t, e, f;
+	int p, k;
+
+	(void)state;
+	build(&cl, &sc, CLOTH(6, 4, FULL));
+	assert_int_equal(cl.node_tri_start[cl.n], 3 * (int)cl.ntri);
+	assert_int_equal(cl.node_edge_start[cl.n], 2 * (int)cl.nedges);
+	for (p = 0; p < cl.n; p++) {
+		for (k = cl.node_tri_start[p]; k < cl.node_tri_start[p + 1]; k++) {
+			const int *tri = cl.tri + 3 * cl.node_tri[k];
+
+			assert_true(tri[0] == p || tri[1] == p || tri[2] == p);
+			if (k > cl.node_tri_start[p])	/* ascending */
+				assert_true(cl.node_tri[k] > cl.node_tri[k - 1]);
+		}
+		for (k = cl.node_edge_start[p]; k < cl.node_edge_start[p + 1]; k++) {
+			const int *ed = cl.edge + 2 * cl.node_edge[k];
+
+			assert_true(ed[0] == p || ed[1] == p);
+		}
+	}
+	/* every triangle edge is listed once among the edges */
+	for (t = 0; t < cl.ntri; t++)
+		for (k = 0; k < 3; k++) {
+			int a = cl.tri[3 * t + (size_t)k], b = cl.tri[3 * t + (size_t)(k + 1) % 3];
+			int found = 0;
+
+			for (e = 0; e < cl.nedges; e++)
+				if ((cl.edge[2 * e] == a && cl.edge[2 * e + 1] == b) ||
+				    (cl.edge[2 * e] == b && cl.edge[2 * e + 1] == a))
+					found++;
+			assert_int_equal(found, 1);
+		}
+	for (e = 0; e < cl.nedges; e++)
+		for (f = 0; f < e; f++)
+			assert_false(cl.edge[2 * e] == cl.edge[2 * f] &&
+			    cl.edge[2 * e + 1] == cl.edge[2 * f + 1]);
+	/* at rest every triangle faces along warp x weft (+x cross +z = -y) */
+	for (t = 0; t < cl.ntri; t++) {
+		vec3 a = v3_load(cl.x0 + 3 * cl.tri[3 * t]);
+		vec3 n = v3_cross(v3_sub(v3_load(cl.x0 + 3 * cl.tri[3 * t + 1]), a),
+		    v3_sub(v3_load(cl.x0 + 3 * cl.tri[3 * t + 2]), a));
+
+		assert_true(n.y < 0);
+		assert_double_equal(v3_len(n), 0.01 * 0.01, 1e-18);
+	}
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
+static double
+total_elastic(const struct forces *fo, const double *x, const double *v)
+{
+	struct energy e;
+
+	forces_energy(fo, 0, x, v, &e);
+	return e.stretch + e.shear + e.bend + e.gravity + e.load;
+}
+
+/* Forces must be minus the gradient of the energy: central differences on
+ * a crumpled configuration, every coordinate of every node. */
+static void
+forces_are_energy_gradient(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+	struct forces fo;
+	struct drape_err err;
+	double *x, *v, *a, worst = 0, scale = 0;
+	uint64_t rng = 12345;
+	int p, k;
+
+	(void)state;
+	build(&cl, &sc, CLOTH(5, 4, FULL "[load]\nnodes = 2 2\nforce = 0.01 0 0\n"));
+	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);
+	x = malloc(3 * (size_t)cl.n * sizeof *x);
+	v = calloc(3 * (size_t)cl.n, sizeof *v);
+	a = malloc(3 * (size_t)cl.n * sizeof *a);
+	assert_non_null(x);
+	assert_non_null(v);
+	assert_non_null(a);
+	for (k = 0; k < 3 * cl.n; k++) {	/* up to 40 % of h off the grid */
+		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+		x[k] = cl.x0[k] + 0.004 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5) * 2;
+	}
+	forces_accel(&fo, 0, x, v, a);
+	for (p = 0; p < cl.n; p++)
+		for (k = 0; k < 3; k++) {
+			double save = x[3 * p + k], h = 1e-7, ep, em, f_num, f;
+
+			x[3 * p + k] = save + h;
+			ep = total_elastic(&fo, x, v);
+			x[3 * p + k] = save - h;
+			em = total_elastic(&fo, x, v);
+			x[3 * p + k] = save;
+			f_num = -(ep - em) / (2 * h);
+			f = a[3 * p + k] * cl.mass[p];
+			worst = fmax(worst, fabs(f - f_num));
+			scale = fmax(scale, fabs(f));
+		}
+	print_message("largest force %.3e N, largest |F + dE/dx| %.3e N\n", scale, worst);
+	assert_true(scale > 1e-3);
+	assert_true(worst < 1e-6 * scale);
+	free(x);
+	free(v);
+	free(a);
+	forces_free(&fo);
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
+/* Rigid motions store no energy and produce no internal force. */
+static void
+rigid_motion_is_free(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+	struct forces fo;
+	struct drape_err err;
+	struct energy e;
+	double *x, *v, *a, c = cos(0.7), s = sin(0.7);
+	int p;
+
+	(void)state;
+	build(&cl, &sc, "[simulation]\nduration = 1\ngravity = 0\n[cloth]\nnodes = 5 5\n"
+	    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\n"
+	    "modulus_weft = 10 MPa\n" FULL);
+	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);
+	x = malloc(3 * (size_t)cl.n * sizeof *x);
+	v = calloc(3 * (size_t)cl.n, sizeof *v);
+	a = malloc(3 * (size_t)cl.n * sizeof *a);
+	assert_non_null(x);
+	assert_non_null(v);
+	assert_non_null(a);
+	for (p = 0; p < cl.n; p++) {	/* rotate about y then z, and shift */
+		vec3 q = v3_load(cl.x0 + 3 * p), r = v3(c * q.x + s * q.z, q.y, -s * q.x + c * q.z);
+
+		v3_store(x + 3 * p, v3(c * r.x - s * r.y + 0.3, s * r.x + c * r.y - 1, r.z + 2));
+	}
+	forces_accel(&fo, 0, x, v, a);
+	forces_energy(&fo, 0, x, v, &e);
+	for (p = 0; p < 3 * cl.n; p++)
+		assert_true(fabs(a[p]) < 1e-6);
+	assert_true(e.stretch + e.shear + e.bend < 1e-20);
+	free(x);
+	free(v);
+	free(a);
+	forces_free(&fo);
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(counts_and_masses),
+		cmocka_unit_test(zero_properties_build_nothing),
+		cmocka_unit_test(adjacency_is_consistent),
+		cmocka_unit_test(forces_are_energy_gradient),
+		cmocka_unit_test(rigid_motion_is_free),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

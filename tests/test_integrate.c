@@ -1,0 +1,319 @@
+/* test_integrate.c: the integrators against known answers: free fall, a
+ * spring's frequency, observed orders of convergence, energy behaviour,
+ * determinism. */
+#include <math.h>
+
+#include "testutil.h"
+#include "vec3.h"
+
+/* A small network swinging from one pinned corner: soft enough that a
+ * millisecond step resolves its fastest mode, with shear and bending on. */
+#define SWING(integrator, dt, duration) SWINGX(integrator, dt, duration, "")
+#define SWINGX(integrator, dt, duration, extra) \
+	"[simulation]\nduration = " duration "\ndt = " dt "\nintegrator = " integrator "\n" extra \
+	"[cloth]\nnodes = 4 4\nspacing = 5 cm\norientation = +x +z\nweight = 100 g/m2\n" \
+	"thickness = 1 mm\nmodulus_warp = 10 kPa\nmodulus_weft = 8 kPa\nshear_modulus = 1 kPa\n" \
+	"bending_warp = 20 uN*m\nbending_weft = 10 uN*m\n[pin]\nnodes = 0 0\n"
+
+static double *
+positions_after(const char *text)
+{
+	struct scene sc;
+	struct stepper st;
+	double *x;
+
+	parse_text(&sc, text);
+	init_stepper(&st, &sc);
+	run_to_end(&st);
+	x = malloc(6 * (size_t)st.cl.n * sizeof *x);
+	assert_non_null(x);
+	memcpy(x, st.y, 6 * (size_t)st.cl.n * sizeof *x);
+	stepper_free(&st);
+	scene_free(&sc);
+	return x;
+}
+
+static double
+distance(const double *a, const double *b, size_t n)
+{
+	double s = 0;
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		s += (a[i] - b[i]) * (a[i] - b[i]);
+	return sqrt(s);
+}
+
+/* The shipped free-fall scene (made smaller to run fast): RK4 integrates a
+ * quadratic exactly, and a cloth at rest shape feels no internal force. */
+static void
+free_fall_rk4(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	double worst = 0;
+	int p;
+
+	(void)state;
+	load_shipped_with(&sc, SCENE_DIR "free-fall.scene", "nodes = 25 25", "nodes = 6 6");
+	init_stepper(&st, &sc);
+	run_to_end(&st);
+	assert_double_equal(st.t, sc.duration, 0);
+	for (p = 0; p < st.cl.n; p++) {
+		vec3 x0 = v3_load(st.cl.x0 + 3 * p), v0 = v3_load(sc.velocity), g = v3_load(sc.gravity);
+		vec3 exact = v3_madd(v3_madd(x0, v0, st.t), g, st.t * st.t / 2);
+		double rel = v3_len(v3_sub(v3_load(stepper_x(&st) + 3 * p), exact)) / v3_len(exact);
+
+		worst = fmax(worst, rel);
+	}
+	print_message("free fall: %ld steps, worst relative error %.3e\n", st.step, worst);
+	assert_true(worst < 1e-12);
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+/* One spring and its mass: a 2 x 2 cloth pinned along i = 0 whose free
+ * nodes are pulled along the warp; each oscillates on its warp spring at
+ * sqrt(k/m) (the weft spring between them keeps its length). */
+static void
+spring_frequency(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	struct blowup bl;
+	double k, m, omega, period, x_rest, prev, t_prev, first = -1, last = 0;
+	int node, crossings = 0;
+
+	(void)state;
+	parse_text(&sc, "[simulation]\nduration = 1\ngravity = 0\n"
+	    "[cloth]\nnodes = 2 2\nspacing = 1 cm\nweight = 100 g/m2\nthickness = 0.5 mm\n"
+	    "modulus_warp = 2 MPa\nmodulus_weft = 2 MPa\nshear_modulus = 0\n"
+	    "bending_warp = 0\nbending_weft = 0\n[pin]\nnodes = 0 *\n");
+	init_stepper(&st, &sc);
+	node = cloth_node(&st.cl, 1, 0);
+	k = st.cl.springs[0].k;
+	m = st.cl.mass[node];
+	omega = sqrt(k / m);
+	period = 2 * V3_PI / omega;
+	st.dt = st.dt_set = period / 2000;
+	st.t_end = 20.5 * period;
+	x_rest = st.cl.x0[3 * node];
+	stepper_x(&st)[3 * node] += 1e-4;
+	stepper_x(&st)[3 * cloth_node(&st.cl, 1, 1)] += 1e-4;
+	prev = stepper_x(&st)[3 * node] - x_rest;
+	t_prev = 0;
+	while (!stepper_done(&st)) {
+		double d;
+
+		assert_int_equal(stepper_step(&st, &bl), 0);
+		d = stepper_x(&st)[3 * node] - x_rest;
+		if (prev > 0 && d <= 0) {	/* downward crossings, interpolated */
+			double tc = t_prev + (st.t - t_prev) * prev / (prev - d);
+
+			if (first < 0)
+				first = tc;
+			last = tc;
+			crossings++;
+		}
+		prev = d;
+		t_prev = st.t;
+	}
+	assert_true(crossings >= 20);
+	period = (last - first) / (crossings - 1);
+	print_message("omega measured %.8g, sqrt(k/m) %.8g, error %.2e\n", 2 * V3_PI / period,
+	    omega, fabs(2 * V3_PI / period / omega - 1));
+	assert_true(fabs(2 * V3_PI / period / omega - 1) < 1e-3);
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+static double
+observed_order(const char *integrator, const char *dt1, const char *dt2, const char *dt4)
+{
+	char text[2048];
+	double *a, *b, *c, p;
+	size_t n = 6 * 16;
+
+	/* SWING's text has the duration, then dt, then the integrator. */
+	snprintf(text, sizeof text, SWING("%s", "%s", "0.1"), dt1, integrator);
+	a = positions_after(text);
+	snprintf(text, sizeof text, SWING("%s", "%s", "0.1"), dt2, integrator);
+	b = positions_after(text);
+	snprintf(text, sizeof text, SWING("%s", "%s", "0.1"), dt4, integrator);
+	c = positions_after(text);
+	p = log2(distance(a, b, n) / distance(b, c, n));
+	print_message("%-6s observed order %.3f (differences %.3e, %.3e)\n", integrator, p,
+	    distance(a, b, n), distance(b, c, n));
+	free(a);
+	free(b);
+	free(c);
+	return p;
+}
+
+static void
+convergence_orders(void **state)
+{
+	(void)state;
+	/* RK4 reaches its asymptotic order from 0.25 ms on this network
+	 * (4.58 from 1 ms, 4.25 from 0.5 ms). */
+	assert_double_equal(observed_order("rk4", "0.25 ms", "0.125 ms", "0.0625 ms"), 4, 0.3);
+	assert_double_equal(observed_order("rk2", "0.5 ms", "0.25 ms", "0.125 ms"), 2, 0.3);
+	assert_double_equal(observed_order("euler", "0.1 ms", "0.05 ms", "0.025 ms"), 1, 0.3);
+	assert_double_equal(observed_order("symplectic-euler", "0.1 ms", "0.05 ms", "0.025 ms"),
+	    1, 0.3);
+}
+
+/* The worst |E(t) - E(0)| over a run. RK4's energy error has an O(h^4)
+ * part that oscillates with the nonlinear swing and an O(h^5) secular part
+ * (for near-linear vibration |R(i w h)|^2 = 1 - (w h)^6/72): over a short
+ * swing the first dominates, so the worst error falls 16x when h halves,
+ * while the error at one instant crosses zero and says little. */
+static double
+energy_error(const char *integrator, const char *dt, const char *duration)
+{
+	char text[2048];
+	struct scene sc;
+	struct stepper st;
+	struct energy e;
+	double e0, worst = 0;
+
+	snprintf(text, sizeof text, SWING("%s", "%s", "%s"), duration, dt, integrator);
+	parse_text(&sc, text);
+	init_stepper(&st, &sc);
+	stepper_energy(&st, &e);
+	e0 = energy_total(&e);
+	while (!stepper_done(&st)) {
+		step_n(&st, 1);
+		stepper_energy(&st, &e);
+		worst = fmax(worst, fabs(energy_total(&e) - e0));
+	}
+	stepper_free(&st);
+	scene_free(&sc);
+	return worst;
+}
+
+static void
+rk4_energy_error_order(void **state)
+{
+	double d1, d2;
+
+	(void)state;
+	d1 = energy_error("rk4", "0.5 ms", "0.3");
+	d2 = energy_error("rk4", "0.25 ms", "0.3");
+	print_message("rk4 worst energy error over 0.3 s: %.3e J at 0.5 ms, %.3e J at 0.25 ms, "
+	    "ratio %.2f\n", d1, d2, d1 / d2);
+	/* 16 = 2^4, within the same +-0.3 on the order as above */
+	assert_true(d1 / d2 > pow(2, 3.7) && d1 / d2 < pow(2, 4.3));
+}
+
+/* A membrane pinned on its border, vibrating about its sag: near-linear, so
+ * symplectic Euler keeps a nearby energy and its error oscillates without
+ * growing over 1e5 steps (RK4's drifts steadily on the same run: printed). */
+#define DRUM(integrator) \
+	"[simulation]\nduration = 100\ndt = 0.5 ms\nintegrator = " integrator "\n" \
+	"[cloth]\nnodes = 5 5\nspacing = 5 cm\nweight = 100 g/m2\nthickness = 1 mm\n" \
+	"modulus_warp = 10 kPa\nmodulus_weft = 8 kPa\nshear_modulus = 1 kPa\n" \
+	"bending_warp = 20 uN*m\nbending_weft = 10 uN*m\n" \
+	"[pin]\nnodes = 0 *, -1 *, 1..3 0, 1..3 -1\n"
+
+static void
+energy_error_by_tenth(const char *text, long n, double tenth[10], double *scale)
+{
+	struct scene sc;
+	struct stepper st;
+	struct energy e;
+	double e0;
+	long s;
+
+	parse_text(&sc, text);
+	init_stepper(&st, &sc);
+	stepper_energy(&st, &e);
+	e0 = energy_total(&e);
+	*scale = 0;
+	for (s = 0; s < 10; s++)
+		tenth[s] = 0;
+	for (s = 0; s < n; s++) {
+		step_n(&st, 1);
+		stepper_energy(&st, &e);
+		tenth[s * 10 / n] = fmax(tenth[s * 10 / n], fabs(energy_total(&e) - e0));
+		*scale = fmax(*scale, -e.gravity);
+	}
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+static void
+symplectic_energy_bounded(void **state)
+{
+	double se[10], rk[10], scale;
+
+	(void)state;
+	energy_error_by_tenth(DRUM("symplectic-euler"), 100000, se, &scale);
+	energy_error_by_tenth(DRUM("rk4"), 100000, rk, &scale);
+	print_message("worst energy error in the first and last 1e4 of 1e5 steps: "
+	    "symplectic Euler %.3e, %.3e J; rk4 %.3e, %.3e J (scale %.3e J)\n",
+	    se[0], se[9], rk[0], rk[9], scale);
+	assert_true(se[9] < 1.5 * se[0]);
+	assert_true(se[9] < 0.02 * scale);
+	assert_true(rk[9] > 10 * rk[0]);	/* the contrast: RK4 drifts */
+}
+
+/* DOPRI5 meets its tolerance: its error against a fine RK4 falls with it. */
+static void
+dopri5_tolerance(void **state)
+{
+	double *ref, *loose, *tight, e_loose, e_tight;
+	size_t n = 6 * 16;
+
+	(void)state;
+	ref = positions_after(SWING("rk4", "0.01 ms", "0.1"));
+	/* dt is DOPRI5's largest step: set it loose so the tolerance rules. */
+	loose = positions_after(SWINGX("dopri5", "0.1 s", "0.1", "tolerance = 1e-4\n"));
+	tight = positions_after(SWINGX("dopri5", "0.1 s", "0.1", "tolerance = 1e-8\n"));
+	e_loose = distance(loose, ref, n);
+	e_tight = distance(tight, ref, n);
+	print_message("dopri5 error against rk4 at 0.01 ms: %.3e at tol 1e-4, %.3e at 1e-8\n",
+	    e_loose, e_tight);
+	assert_true(e_tight < e_loose / 100);
+	assert_true(e_tight < 1e-6);
+	free(ref);
+	free(loose);
+	free(tight);
+}
+
+static void
+same_scene_same_hash(void **state)
+{
+	struct scene sc;
+	struct stepper a, b;
+
+	(void)state;
+	load_shipped(&sc, SCENE_DIR "cantilever.scene");
+	sc.duration = 0.002;
+	init_stepper(&a, &sc);
+	init_stepper(&b, &sc);
+	run_to_end(&a);
+	run_to_end(&b);
+	assert_true(a.step > 100);
+	assert_true(stepper_hash(&a) == stepper_hash(&b));
+	assert_memory_equal(a.y, b.y, 6 * (size_t)a.cl.n * sizeof *a.y);
+	stepper_free(&a);
+	stepper_free(&b);
+	scene_free(&sc);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(free_fall_rk4),
+		cmocka_unit_test(spring_frequency),
+		cmocka_unit_test(convergence_orders),
+		cmocka_unit_test(rk4_energy_error_order),
+		cmocka_unit_test(symplectic_energy_bounded),
+		cmocka_unit_test(dopri5_tolerance),
+		cmocka_unit_test(same_scene_same_hash),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

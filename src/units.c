@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "units.h"
 
@@ -68,8 +69,13 @@ units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, siz
 		while (isspace((unsigned char)*s))
 			s++;
 		if (!number_start(s)) {
-			snprintf(why, whylen, k == 0 ? "expected a number" :
-			    "expected %d numbers", n);
+			const char *w = s + (*s == '-' || *s == '+');
+
+			if (strncasecmp(w, "nan", 3) == 0 || strncasecmp(w, "inf", 3) == 0)
+				snprintf(why, whylen, "expected a finite number");
+			else
+				snprintf(why, whylen, k == 0 ? "expected a number" :
+				    "expected %d numbers", n);
 			return -1;
 		}
 		out[k] = strtod(s, &end);

@@ -7,7 +7,7 @@
 /* Exit statuses shared by every subcommand. */
 enum {
 	EXIT_OK = 0,
-	EXIT_RUNTIME = 1,	/* I/O failed, out of memory */
+	EXIT_RUNTIME = 1,	/* an output file or stdout could not be written */
 	EXIT_USAGE = 2,		/* bad arguments, bad scene or replay */
 	EXIT_BLOWUP = 3,	/* the simulation diverged */
 };

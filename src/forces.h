@@ -38,7 +38,8 @@ void forces_energy(const struct forces *fo, double t, const double *x, const dou
     struct energy *e);
 double energy_total(const struct energy *e);
 
-/* The largest total load on one node over the run, in N. */
+/* The sum of every load set's per-node force, in N: a scale for the
+ * blow-up limit, not a bound. */
 double forces_max_load(const struct forces *fo);
 
 #endif

@@ -61,6 +61,16 @@ write_scene(const char *name, const char *text)
 	return path;
 }
 
+/* Writes a scene and runs "drape run --headless" on it. */
+static void
+run_text(struct result *r, const char *name, const char *text)
+{
+	char args[800];
+
+	snprintf(args, sizeof args, "run --headless '%s'", write_scene(name, text));
+	drape(r, args);
+}
+
 static int
 setup(void **state)
 {
@@ -190,12 +200,9 @@ static void
 good_scene_runs(void **state)
 {
 	struct result r;
-	const char *path = write_scene("good.scene", GOOD);
-	char args[800];
 
 	(void)state;
-	snprintf(args, sizeof args, "run --headless '%s'", path);
-	drape(&r, args);
+	run_text(&r, "good.scene", GOOD);
 	assert_int_equal(r.status, 0);
 	assert_non_null(strstr(r.out, "state hash"));
 	assert_non_null(strstr(r.out, "simulated    0.01 s"));
@@ -205,15 +212,12 @@ static void
 blowup_exits_3(void **state)
 {
 	struct result r;
-	const char *path = write_scene("stiff.scene", "[simulation]\nduration = 1\ndt = 5 ms\n"
+
+	(void)state;
+	run_text(&r, "stiff.scene", "[simulation]\nduration = 1\ndt = 5 ms\n"
 	    "[cloth]\nnodes = 6 6\nspacing = 1 cm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 30 MPa\nmodulus_weft = 30 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 0\nbending_weft = 0\n[pin]\nnodes = 0 0\n");
-	char args[800];
-
-	(void)state;
-	snprintf(args, sizeof args, "run --headless '%s'", path);
-	drape(&r, args);
 	assert_int_equal(r.status, 3);
 	assert_non_null(strstr(r.err, "blow-up at step"));
 	assert_non_null(strstr(r.err, ": node "));

@@ -10,9 +10,12 @@ enum {
 	EXIT_RUNTIME = 1,	/* an output file or stdout could not be written */
 	EXIT_USAGE = 2,		/* bad arguments, bad scene or replay */
 	EXIT_BLOWUP = 3,	/* the simulation diverged */
+	EXIT_FOUND = 4,		/* drape check found intersections */
 };
 
 int cmd_run(int argc, char **argv);
+int cmd_ccd(int argc, char **argv);
+int cmd_check(int argc, char **argv);
 void usage(FILE *f);
 
 #endif

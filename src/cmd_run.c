@@ -62,6 +62,26 @@ summary(const struct stepper *st, double wall)
 	printf("energy       %.6e J (kinetic %.4e, gravity %.4e, stretch %.4e, shear %.4e, "
 	    "bend %.4e, load %.4e)\n", energy_total(&e), e.kinetic, e.gravity, e.stretch,
 	    e.shear, e.bend, e.load);
+	if (st->col.active) {
+		const struct collide_stats *c = &st->col.total;
+		double steps = st->step > 0 ? (double)st->step : 1;
+		int k;
+
+		printf("collisions   broad %s, narrow %s, position %s, self %s, cell %.4g m\n",
+		    broad_mode_name[sc->col.broad], narrow_mode_name[sc->col.narrow],
+		    position_policy_name[sc->col.position], sc->col.self ? "on" : "off",
+		    st->col.cell);
+		printf("per step     %.1f node pairs, %.1f vertex-triangle and %.1f edge-edge "
+		    "pairs, %.1f narrow tests\n", (double)c->broad.node_pairs / steps,
+		    (double)c->broad.vt_pairs / steps, (double)c->broad.ee_pairs / steps,
+		    (double)c->narrow_tests / steps);
+		printf("contacts     ");
+		for (k = 0; k < CONTACT_NTYPES; k++)
+			printf("%s%s %ld", k ? ", " : "", contact_type_name[k], c->contacts[k]);
+		printf("\n");
+		printf("corrections  %ld (%ld put back to step k; at most %d passes in a step; "
+		    "%ld steps unresolved)\n", c->corrections, c->frozen, c->passes, c->unresolved);
+	}
 	printf("state hash   %016" PRIx64 "\n", stepper_hash(st));
 }
 

@@ -12,6 +12,8 @@ usage(FILE *f)
 	    "       drape SCENE\n"
 	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
 	    "                 [--final-obj FILE] SCENE\n"
+	    "       drape check [--every N] SCENE|OBJ...\n"
+	    "       drape ccd [--method seed|ccd] [--inside angle|crossing] [--kind vf|ee] FILE.csv...\n"
 	    "\n"
 	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
 	    "T and DT are times in seconds, or with a unit (ms, us); DT may be 'auto'.\n"
@@ -35,6 +37,10 @@ main(int argc, char **argv)
 	}
 	if (strcmp(argv[1], "run") == 0)
 		return cmd_run(argc - 1, argv + 1);
+	if (strcmp(argv[1], "ccd") == 0)
+		return cmd_ccd(argc - 1, argv + 1);
+	if (strcmp(argv[1], "check") == 0)
+		return cmd_check(argc - 1, argv + 1);
 	if (argv[1][0] == '-') {
 		fprintf(stderr, "drape: unknown option '%s'\n", argv[1]);
 		usage(stderr);

@@ -56,12 +56,24 @@ static const char *const cloth_keys[] = {
 static const char *const pin_keys[] = { "nodes", NULL };
 static const char *const move_keys[] = { "nodes", "velocity", "path", "start", "stop", NULL };
 static const char *const load_keys[] = { "nodes", "force", "start", "stop", NULL };
+static const char *const collision_keys[] = {
+	"self", "broad", "narrow", "inside", "cell", "restitution", "friction", "viscous_friction",
+	"position", NULL
+};
+static const char *const plane_keys[] = { "point", "normal", "friction", NULL };
+static const char *const box_keys[] = { "min", "max", "friction", NULL };
+static const char *const sphere_keys[] = { "centre", "radius", "friction", NULL };
+static const char *const disc_keys[] = { "centre", "radius", "height", "friction", NULL };
+static const char *const mesh_keys[] = { "file", "scale", "offset", "friction", NULL };
+static const char *const icosahedron_keys[] = { "centre", "radius", "friction", NULL };
 
 static int read_simulation(struct pctx *, const struct group *);
 static int read_cloth(struct pctx *, const struct group *);
 static int read_pin(struct pctx *, const struct group *);
 static int read_move(struct pctx *, const struct group *);
 static int read_load(struct pctx *, const struct group *);
+static int read_collision(struct pctx *, const struct group *);
+static int read_obstacle(struct pctx *, const struct group *);
 
 static const struct section_kind {
 	const char *name;
@@ -74,7 +86,20 @@ static const struct section_kind {
 	{ "pin", pin_keys, 0, read_pin },
 	{ "move", move_keys, 0, read_move },
 	{ "load", load_keys, 0, read_load },
+	{ "collision", collision_keys, 1, read_collision },
+	{ "plane", plane_keys, 0, read_obstacle },
+	{ "box", box_keys, 0, read_obstacle },
+	{ "sphere", sphere_keys, 0, read_obstacle },
+	{ "disc", disc_keys, 0, read_obstacle },
+	{ "mesh", mesh_keys, 0, read_obstacle },
+	{ "icosahedron", icosahedron_keys, 0, read_obstacle },
 };
+
+const char *const broad_mode_name[] = { "seed", "grid", "brute", NULL };
+const char *const narrow_mode_name[] = { "seed", "ccd", NULL };
+const char *const position_policy_name[] = { "keep", "q", "slide", NULL };
+static const char *const inside_test_name[] = { "angle", "crossing", NULL };
+static const char *const switch_name[] = { "off", "on", NULL };
 #define NSECTION_KINDS (sizeof section_kinds / sizeof section_kinds[0])
 
 static int
@@ -300,10 +325,10 @@ read_cloth(struct pctx *c, const struct group *g)
 	if (get_numbers(c, g, "nodes", DIM_NONE, 2, ANY, 1, nodes) < 0)
 		return -1;
 	e = find(g, "nodes");
-	if (nodes[0] != floor(nodes[0]) || nodes[1] != floor(nodes[1]) || nodes[0] < 2 ||
-	    nodes[1] < 2 || nodes[0] > MAX_GRID || nodes[1] > MAX_GRID ||
+	if (nodes[0] != floor(nodes[0]) || nodes[1] != floor(nodes[1]) || nodes[0] < 1 ||
+	    nodes[1] < 1 || nodes[0] > MAX_GRID || nodes[1] > MAX_GRID ||
 	    nodes[0] * nodes[1] > MAX_NODES)
-		return fail(c, e->line, "nodes: expected two whole numbers nu nv, each from 2 to %d "
+		return fail(c, e->line, "nodes: expected two whole numbers nu nv, each from 1 to %d "
 		    "(%d nodes at most), got '%s'", MAX_GRID, MAX_NODES, e->value);
 	sc->nu = (int)nodes[0];
 	sc->nv = (int)nodes[1];
@@ -566,6 +591,158 @@ read_load(struct pctx *c, const struct group *g)
 	return 0;
 }
 
+/* ---- [collision] and the obstacles ---- */
+
+/* A word out of a NULL-terminated list: 1 and *out its index if the key is
+ * there, 0 if absent, -1 if not one of them. */
+static int
+get_word(struct pctx *c, const struct group *g, const char *key, const char *const *names,
+    int *out)
+{
+	const struct ini_entry *e = find(g, key);
+	char list[200];
+	int k;
+
+	if (e == NULL)
+		return 0;
+	for (k = 0; names[k] != NULL; k++)
+		if (strcmp(names[k], e->value) == 0) {
+			*out = k;
+			return 1;
+		}
+	join_keys(list, sizeof list, names);
+	return fail(c, e->line, "%s: expected one of %s, got '%s'", key, list, e->value);
+}
+
+static int
+read_collision(struct pctx *c, const struct group *g)
+{
+	struct collision_opts *o = &c->sc->col;
+	const struct ini_entry *e;
+	int self = 1, broad = o->broad, narrow = o->narrow, inside = o->inside;
+	int position = o->position;
+
+	if (get_word(c, g, "self", switch_name, &self) < 0 ||
+	    get_word(c, g, "broad", broad_mode_name, &broad) < 0 ||
+	    get_word(c, g, "narrow", narrow_mode_name, &narrow) < 0 ||
+	    get_word(c, g, "inside", inside_test_name, &inside) < 0 ||
+	    get_word(c, g, "position", position_policy_name, &position) < 0)
+		return -1;
+	o->self = self;
+	o->broad = broad;
+	o->narrow = narrow;
+	o->inside = inside;
+	o->position = position;
+	if ((e = find(g, "cell")) != NULL && strcmp(e->value, "auto") != 0 &&
+	    get_numbers(c, g, "cell", DIM_LENGTH, 1, POSITIVE, 1, &o->cell) < 0)
+		return -1;
+	if (get_numbers(c, g, "restitution", DIM_NONE, 1, NONNEGATIVE, 0, &o->restitution) < 0 ||
+	    get_numbers(c, g, "friction", DIM_NONE, 1, NONNEGATIVE, 0, &o->friction) < 0 ||
+	    get_numbers(c, g, "viscous_friction", DIM_RATE, 1, NONNEGATIVE, 0, &o->viscous) < 0)
+		return -1;
+	if (o->restitution > 1)
+		return fail(c, find(g, "restitution")->line, "restitution: expected a number "
+		    "from 0 (perfectly inelastic) to 1, got %g", o->restitution);
+	return 0;
+}
+
+static int
+get_vec(struct pctx *c, const struct group *g, const char *key, int required, vec3 *v)
+{
+	double p[3];
+	int rc = get_numbers(c, g, key, DIM_LENGTH, 3, ANY, required, p);
+
+	if (rc == 1)
+		*v = v3_load(p);
+	return rc;
+}
+
+/* A mesh file is found beside the scene file unless its path is absolute. */
+static int
+read_mesh(struct pctx *c, const struct group *g, struct obstacle *o)
+{
+	const struct ini_entry *e = find(g, "file");
+	const char *slash = strrchr(c->file, '/');
+	double scale = 1;
+	vec3 offset = v3(0, 0, 0);
+	struct drape_err merr;
+	char *path;
+	size_t dir;
+
+	if (e == NULL)
+		return missing(c, g, "file", "the path of a Wavefront OBJ file");
+	dir = e->value[0] != '/' && slash != NULL ? (size_t)(slash - c->file) + 1 : 0;
+	if ((path = malloc(dir + strlen(e->value) + 1)) == NULL)
+		return fail(c, e->line, "out of memory");
+	memcpy(path, c->file, dir);
+	strcpy(path + dir, e->value);
+	if (mesh_load_obj(&o->mesh, path, &merr) != 0) {
+		free(path);
+		return fail(c, e->line, "file: %s", merr.msg);
+	}
+	free(path);
+	if (get_numbers(c, g, "scale", DIM_NONE, 1, POSITIVE, 0, &scale) < 0 ||
+	    get_vec(c, g, "offset", 0, &offset) < 0)
+		return -1;
+	mesh_transform(&o->mesh, scale, offset);
+	return 0;
+}
+
+static int
+read_obstacle(struct pctx *c, const struct group *g)
+{
+	struct scene *sc = c->sc;
+	struct obstacle *o, *no;
+	struct drape_err oerr;
+
+	if ((no = realloc(sc->obstacles, (sc->nobstacles + 1) * sizeof *no)) == NULL)
+		return fail(c, g->line, "out of memory");
+	sc->obstacles = no;
+	o = &sc->obstacles[sc->nobstacles++];
+	memset(o, 0, sizeof *o);
+	o->line = g->line;
+	if (get_numbers(c, g, "friction", DIM_NONE, 1, NONNEGATIVE, 0, &o->friction) < 0)
+		return -1;
+	if (strcmp(g->section, "plane") == 0) {
+		o->kind = OBSTACLE_PLANE;
+		if (get_vec(c, g, "point", 1, &o->point) < 0)
+			return -1;
+		o->normal = v3(0, 1, 0);
+		if (find(g, "normal") != NULL) {
+			double nv[3];
+
+			if (get_numbers(c, g, "normal", DIM_NONE, 3, ANY, 1, nv) < 0)
+				return -1;
+			o->normal = v3_load(nv);
+		}
+	} else if (strcmp(g->section, "box") == 0) {
+		o->kind = OBSTACLE_BOX;
+		if (get_vec(c, g, "min", 1, &o->lo) < 0 || get_vec(c, g, "max", 1, &o->hi) < 0)
+			return -1;
+	} else if (strcmp(g->section, "sphere") == 0 || strcmp(g->section, "disc") == 0) {
+		o->kind = g->section[0] == 's' ? OBSTACLE_SPHERE : OBSTACLE_DISC;
+		if (get_vec(c, g, "centre", 1, &o->centre) < 0 ||
+		    get_numbers(c, g, "radius", DIM_LENGTH, 1, ANY, 1, &o->radius) < 0 ||
+		    (o->kind == OBSTACLE_DISC &&
+		    get_numbers(c, g, "height", DIM_LENGTH, 1, ANY, 1, &o->height) < 0))
+			return -1;
+	} else if (strcmp(g->section, "icosahedron") == 0) {
+		o->kind = OBSTACLE_MESH;
+		if (get_vec(c, g, "centre", 1, &o->centre) < 0 ||
+		    get_numbers(c, g, "radius", DIM_LENGTH, 1, POSITIVE, 1, &o->radius) < 0)
+			return -1;
+		if (mesh_icosahedron(&o->mesh, o->centre, o->radius) != 0)
+			return fail(c, g->line, "out of memory");
+	} else {
+		o->kind = OBSTACLE_MESH;
+		if (read_mesh(c, g, o) != 0)
+			return -1;
+	}
+	if (obstacle_check(o, &oerr) != 0)
+		return fail(c, g->line, "[%s]: %s", g->section, oerr.msg);
+	return 0;
+}
+
 /* ---- the whole file ---- */
 
 static void
@@ -578,6 +755,13 @@ set_defaults(struct scene *sc)
 	sc->output_rate = 50;
 	sc->warp_axis[0] = 1;
 	sc->weft_axis[2] = 1;
+	/* no [collision]: the cloth does not meet itself; with one, the
+	 * defaults are those that never miss */
+	sc->col.self = false;
+	sc->col.broad = BROAD_GRID;
+	sc->col.narrow = NARROW_CCD;
+	sc->col.inside = INSIDE_ANGLE;
+	sc->col.position = POSITION_SLIDE;
 }
 
 static char *
@@ -632,7 +816,8 @@ scene_parse(struct scene *sc, const char *path, const char *text, struct drape_e
 				break;
 		if (s == NSECTION_KINDS) {
 			fail(&c, h->line, "unknown section [%s]; expected [simulation], [cloth], "
-			    "[pin], [move] or [load]", h->section);
+			    "[pin], [move], [load], [collision], [plane], [box], [sphere], "
+			    "[disc], [mesh] or [icosahedron]", h->section);
 			goto out;
 		}
 		if (section_kinds[s].once && seen[s]) {
@@ -735,6 +920,9 @@ scene_free(struct scene *sc)
 	}
 	for (i = 0; i < sc->nloads; i++)
 		free(sc->loads[i].nodes.b);
+	for (i = 0; i < sc->nobstacles; i++)
+		obstacle_free(&sc->obstacles[i]);
+	free(sc->obstacles);
 	free(sc->motions);
 	free(sc->loads);
 	free(sc->path);

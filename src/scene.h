@@ -7,6 +7,8 @@
 
 #include "err.h"
 #include "integrate.h"
+#include "narrow.h"
+#include "obstacle.h"
 
 /* A block of grid nodes, i along the warp, j along the weft, inclusive. */
 struct node_block {
@@ -52,6 +54,30 @@ struct material {
 	double spring_damping;	/* s, dashpot c = spring_damping * k */
 };
 
+enum broad_mode { BROAD_SEED, BROAD_GRID, BROAD_BRUTE };
+enum narrow_mode { NARROW_SEED, NARROW_CCD };
+enum position_policy {
+	POSITION_KEEP,		/* the node stays where it was at step k (the chapter) */
+	POSITION_Q,		/* the node moves to Q */
+	POSITION_SLIDE,		/* step k's normal offset, this step's tangential motion */
+};
+
+extern const char *const broad_mode_name[], *const narrow_mode_name[],
+    *const position_policy_name[];
+
+/* [collision]: how contacts are found and answered. */
+struct collision_opts {
+	bool self;		/* cloth against cloth */
+	enum broad_mode broad;
+	enum narrow_mode narrow;
+	enum inside_test inside;
+	double cell;		/* L_ce in m; 0 for auto (eq. 21 and the triangle size) */
+	double restitution;	/* e of eq. 11 */
+	double friction;	/* Coulomb mu, cloth on cloth */
+	double viscous;		/* 1/s, viscous friction on sliding */
+	enum position_policy position;
+};
+
 struct scene {
 	char *path;
 	char *name;
@@ -75,6 +101,10 @@ struct scene {
 	size_t nmotions;
 	struct scene_load *loads;
 	size_t nloads;
+
+	struct collision_opts col;
+	struct obstacle *obstacles;
+	size_t nobstacles;
 };
 
 /* 1 if every block of the set lies on an nu x nv grid. */

@@ -87,6 +87,8 @@ stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 	    v3_len(v3_load(sc->velocity)) + prescribed_max_speed(&st->pr) +
 	    forces_max_load(&st->fo) * (double)st->cl.n / mass * sc->duration;
 	st->v_limit = 1000 * vscale;
+	if (collide_init(&st->col, sc, &st->cl, st->pr.held, st->dt_set, vscale, err) != 0)
+		goto fail;
 	return 0;
 fail:
 	stepper_free(st);
@@ -96,6 +98,7 @@ fail:
 void
 stepper_free(struct stepper *st)
 {
+	collide_free(&st->col);
 	integrator_free(&st->in);
 	forces_free(&st->fo);
 	prescribed_free(&st->pr);
@@ -143,6 +146,7 @@ stepper_step(struct stepper *st, struct blowup *bl)
 	double h = st->dt, h_next, remaining = st->t_end - st->t, t_new;
 	int last = 0, bad;
 	double *swap;
+	struct drape_err cerr;
 
 	if (h >= remaining * (1 - 1e-12)) {	/* land on the end exactly */
 		h = remaining;
@@ -166,7 +170,15 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		t_new = st->t + h;
 	/* 2. specified displacements */
 	prescribed_apply(&st->pr, &st->cl, t_new, st->y_next, st->y_next + n3);
-	/* 3. blow-up check before anything is committed */
+	/* 3. collisions: self-contact, obstacles */
+	if (collide_step(&st->col, st->step, h, st->y, st->y_next, &cerr) != 0) {
+		bl->step = st->step;
+		bl->t = st->t;
+		bl->node = bl->i = bl->j = -1;
+		snprintf(bl->why, sizeof bl->why, "%.*s", (int)sizeof bl->why - 1, cerr.msg);
+		return 1;
+	}
+	/* 4. blow-up check before anything is committed */
 	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0) {
 		bl->step = st->step;
 		bl->t = st->t;
@@ -175,7 +187,7 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		bl->j = bad / st->cl.nu;
 		return 1;
 	}
-	/* 4. commit */
+	/* 5. commit */
 	swap = st->y;
 	st->y = st->y_next;
 	st->y_next = swap;

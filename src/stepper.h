@@ -1,7 +1,8 @@
-/* stepper.h: a run in progress. The stepper owns the order of a step:
- * integrate to the predicted state k+1 from the consistent state k, put held
- * nodes back on their prescribed motion, check for a blow-up, commit. The
- * collision stages slot in between integration and commit. */
+/* stepper.h: a run in progress. The stepper owns the order of a step
+ * (the chapter's §4): integrate to the predicted state k+1 from the
+ * consistent state k, put held nodes back on their prescribed motion,
+ * correct the nodes that collide (self-contact, then obstacles), check for
+ * a blow-up, commit. */
 #ifndef DRAPE_STEPPER_H
 #define DRAPE_STEPPER_H
 
@@ -9,6 +10,7 @@
 #include <stdint.h>
 
 #include "cloth.h"
+#include "collide.h"
 #include "err.h"
 #include "forces.h"
 #include "integrate.h"
@@ -29,6 +31,7 @@ struct stepper {
 	struct prescribed pr;
 	struct forces fo;
 	struct integrator in;
+	struct collide col;
 	double *y, *y_next;	/* positions (3n) then velocities (3n) */
 	double t, t_end;
 	double dt;		/* the step to try next */

@@ -150,8 +150,8 @@ static const struct bad_case {
 	  "bending_warp = 0\nbending_weft = 0\n", 6, "weight: expected a weight per area" },
 	{ "NaN", "[simulation]\nduration = nan\n[cloth]\nnodes = 4 4\n" CLOTH_BODY, 2,
 	  "duration: expected a finite number" },
-	{ "1 x 1 nodes", SIM "[cloth]\nnodes = 1 1\n" CLOTH_BODY, 4,
-	  "nodes: expected two whole numbers nu nv, each from 2" },
+	{ "0 x 1 nodes", SIM "[cloth]\nnodes = 0 1\n" CLOTH_BODY, 4,
+	  "nodes: expected two whole numbers nu nv, each from 1" },
 	{ "unknown unit", SIM "[cloth]\nnodes = 4 4\nspacing = 1 furlong\nweight = 1\n"
 	  "thickness = 1 mm\nmodulus_warp = 1\nmodulus_weft = 1\nshear_modulus = 0\n"
 	  "bending_warp = 0\nbending_weft = 0\n", 5, "unknown unit 'furlong'" },

@@ -1,0 +1,408 @@
+/* broad.c: candidate pairs for the narrow phase, by the chapter's hash
+ * (seed), by swept boxes in the same hash (grid), or all of them (brute). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "broad.h"
+
+void
+broad_init(struct broad *b, enum broad_mode mode)
+{
+	memset(b, 0, sizeof *b);
+	b->mode = mode;
+	hash_init(&b->hash);
+}
+
+void
+broad_free(struct broad *b)
+{
+	hash_free(&b->hash);
+	free(b->vt);
+	free(b->ee);
+	free(b->stamp);
+	free(b->box);
+	memset(b, 0, sizeof *b);
+}
+
+static int
+grow(void **p, size_t *cap, size_t need, size_t size)
+{
+	void *np;
+	size_t n = *cap ? *cap : 256;
+
+	if (need <= *cap)
+		return 0;
+	while (n < need)
+		n *= 2;
+	if ((np = realloc(*p, n * size)) == NULL)
+		return -1;
+	*p = np;
+	*cap = n;
+	return 0;
+}
+
+static int
+push_vt(struct broad *b, int v, int t)
+{
+	if (b->nvt == b->vtcap && grow((void **)&b->vt, &b->vtcap, b->nvt + 1, sizeof *b->vt) != 0)
+		return -1;
+	b->vt[b->nvt].v = v;
+	b->vt[b->nvt++].t = t;
+	return 0;
+}
+
+static int
+push_ee(struct broad *b, int e1, int e2)
+{
+	if (b->nee == b->eecap && grow((void **)&b->ee, &b->eecap, b->nee + 1, sizeof *b->ee) != 0)
+		return -1;
+	b->ee[b->nee].a = e1 < e2 ? e1 : e2;
+	b->ee[b->nee++].b = e1 < e2 ? e2 : e1;
+	return 0;
+}
+
+static int
+tri_has(const struct geom *g, int t, int v)
+{
+	const int *n = g->tri + 3 * t;
+
+	return n[0] == v || n[1] == v || n[2] == v;
+}
+
+/* A vertex and a triangle (or two edges) that are all obstacle: never. */
+static int
+vt_static(const struct geom *g, int v, int t)
+{
+	return v >= g->ncloth && g->tri[3 * t] >= g->ncloth;
+}
+
+static int
+ee_skip(const struct geom *g, int e1, int e2)
+{
+	const int *a = g->edge + 2 * e1, *b = g->edge + 2 * e2;
+
+	return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1] ||
+	    (a[0] >= g->ncloth && b[0] >= g->ncloth);
+}
+
+static int
+cmp_vt(const void *pa, const void *pb)
+{
+	const struct vt_pair *a = pa, *b = pb;
+
+	if (a->v != b->v)
+		return a->v < b->v ? -1 : 1;
+	return (a->t > b->t) - (a->t < b->t);
+}
+
+static int
+cmp_ee(const void *pa, const void *pb)
+{
+	const struct ee_pair *a = pa, *b = pb;
+
+	if (a->a != b->a)
+		return a->a < b->a ? -1 : 1;
+	return (a->b > b->b) - (a->b < b->b);
+}
+
+/* Sorted and without repeats, so that the narrow phase's order, and with it
+ * the run, does not depend on how the pairs were found. */
+static void
+canonical(struct broad *b)
+{
+	size_t i, k;
+
+	qsort(b->vt, b->nvt, sizeof *b->vt, cmp_vt);
+	for (i = k = 0; i < b->nvt; i++)
+		if (k == 0 || b->vt[i].v != b->vt[k - 1].v || b->vt[i].t != b->vt[k - 1].t)
+			b->vt[k++] = b->vt[i];
+	b->nvt = k;
+	qsort(b->ee, b->nee, sizeof *b->ee, cmp_ee);
+	for (i = k = 0; i < b->nee; i++)
+		if (k == 0 || b->ee[i].a != b->ee[k - 1].a || b->ee[i].b != b->ee[k - 1].b)
+			b->ee[k++] = b->ee[i];
+	b->nee = k;
+}
+
+static void
+box_add(double *bx, const double *p)
+{
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		bx[k] = fmin(bx[k], p[k]);
+		bx[3 + k] = fmax(bx[3 + k], p[k]);
+	}
+}
+
+static void
+box_empty(double *bx)
+{
+	bx[0] = bx[1] = bx[2] = INFINITY;
+	bx[3] = bx[4] = bx[5] = -INFINITY;
+}
+
+static int
+box_overlap(const double *a, const double *b)
+{
+	return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] &&
+	    a[2] <= b[5] && b[2] <= a[5];
+}
+
+/* The node pairs (A, B) the chapter tests: A against the triangles that
+ * have B as a vertex, and B against those of A. */
+static int
+seed_pair(struct broad *b, const struct geom *g, int na, int nb, bool want_ee)
+{
+	int k, l, pass;
+
+	for (pass = 0; pass < 2; pass++) {
+		int v = pass ? nb : na, w = pass ? na : nb;
+
+		for (k = g->vtri_start[w]; k < g->vtri_start[w + 1]; k++) {
+			int t = g->vtri[k];
+
+			if (!tri_has(g, t, v) && !vt_static(g, v, t) && push_vt(b, v, t) != 0)
+				return -1;
+		}
+	}
+	if (!want_ee)
+		return 0;
+	for (k = g->vedge_start[na]; k < g->vedge_start[na + 1]; k++)
+		for (l = g->vedge_start[nb]; l < g->vedge_start[nb + 1]; l++)
+			if (!ee_skip(g, g->vedge[k], g->vedge[l]) &&
+			    push_ee(b, g->vedge[k], g->vedge[l]) != 0)
+				return -1;
+	return 0;
+}
+
+static int
+find_seed(struct broad *b, const struct geom *g, double cell, bool want_ee, struct drape_err *err)
+{
+	struct spatial_hash *h = &b->hash;
+	double bx[6];
+	size_t i;
+	int v, e, f, d[3];
+
+	box_empty(bx);
+	for (v = 0; v < g->nv; v++)
+		box_add(bx, g->x1 + 3 * v);
+	if (hash_begin(h, cell, v3_load(bx), v3_load(bx + 3), (size_t)g->nv) != 0) {
+		err_set(err, "spatial hash: out of memory, or %g m cubes are too small for "
+		    "the scene's extent", cell);
+		return -1;
+	}
+	/* the hash table is filled with every node's predicted position */
+	for (v = 0; v < g->nv; v++) {
+		hash_cube_of(h, v3_load(g->x1 + 3 * v), d);
+		if (hash_insert(h, hash_key(h, d[0], d[1], d[2]), v) != 0) {
+			err_set(err, "spatial hash: out of memory");
+			return -1;
+		}
+	}
+	/* only nodes that share a cube are tested */
+	for (i = 0; i < h->nfilled; i++) {
+		const struct hash_cube *c = &h->slot[h->filled[i]];
+
+		if (c->count < 2)
+			continue;
+		for (e = c->head; e >= 0; e = h->next[e])
+			for (f = h->next[e]; f >= 0; f = h->next[f]) {
+				b->st.node_pairs++;
+				if (h->item[e] >= g->ncloth && h->item[f] >= g->ncloth)
+					continue;
+				if (seed_pair(b, g, h->item[e], h->item[f], want_ee) != 0) {
+					err_set(err, "broad phase: out of memory");
+					return -1;
+				}
+			}
+	}
+	hash_stats(h, &b->st.hash);
+	return 0;
+}
+
+static void
+cube_range(const struct spatial_hash *h, const double *bx, int lo[3], int hi[3])
+{
+	hash_cube_of(h, v3_load(bx), lo);
+	hash_cube_of(h, v3_load(bx + 3), hi);
+}
+
+/*
+ * grid: the chapter's hash holds triangles (and edges) instead of nodes,
+ * each in every cube its swept box (step k to k+1) overlaps, and each
+ * node's swept box is looked up in every cube it overlaps (Teschner et al.
+ * 2003). Why it never misses: every narrow test, seed or ccd, can only
+ * report a contact at a point that lies in both the node's swept box (its
+ * path, and for seed the segments F_k -> D_k+1 from its neighbours) and the
+ * triangle's swept box. Two boxes that share a point share a cube, since
+ * both were put in every cube they overlap, whatever the cube size; the
+ * cube size only sets the cost. Edges the same way.
+ */
+static int
+find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, struct drape_err *err)
+{
+	struct spatial_hash *h = &b->hash;
+	size_t nbox = g->ntri + (want_ee ? g->nedges : 0), i, total;
+	double region[6], qb[6];
+	int lo[3], hi[3], x, y, z, v, k;
+
+	if (grow((void **)&b->box, &b->boxcap, 6 * nbox, sizeof *b->box) != 0 ||
+	    grow((void **)&b->stamp, &b->stampcap, nbox, sizeof *b->stamp) != 0)
+		goto oom;
+	box_empty(region);
+	for (i = 0; i < nbox; i++) {
+		const int *n = i < g->ntri ? g->tri + 3 * i : g->edge + 2 * (i - g->ntri);
+		int nn = i < g->ntri ? 3 : 2;
+		double *bx = b->box + 6 * i;
+
+		box_empty(bx);
+		for (k = 0; k < nn; k++) {
+			box_add(bx, g->x0 + 3 * n[k]);
+			box_add(bx, g->x1 + 3 * n[k]);
+		}
+		box_add(region, bx);
+		box_add(region, bx + 3);
+		b->stamp[i] = -1;
+	}
+	if (nbox == 0)
+		return 0;
+	for (;;) {
+		if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), 1) == 0)
+			break;
+		if ((cell *= 2) > 1e300)
+			goto oom;
+	}
+	for (total = 0, i = 0; i < nbox; i++) {
+		cube_range(h, b->box + 6 * i, lo, hi);
+		total += (size_t)(hi[0] - lo[0] + 1) * (size_t)(hi[1] - lo[1] + 1) *
+		    (size_t)(hi[2] - lo[2] + 1);
+	}
+	if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), total) != 0)
+		goto oom;
+	b->st.cell = cell;
+	for (i = 0; i < nbox; i++) {
+		cube_range(h, b->box + 6 * i, lo, hi);
+		for (y = lo[1]; y <= hi[1]; y++)
+			for (z = lo[2]; z <= hi[2]; z++)
+				for (x = lo[0]; x <= hi[0]; x++)
+					if (hash_insert(h, hash_key(h, x, y, z), (int)i) != 0)
+						goto oom;
+	}
+
+	/* each node's swept box, widened to the segments from its
+	 * neighbours at step k that the seed test draws to it */
+	for (v = 0; v < g->nv; v++) {
+		if (v >= g->ncloth && !want_ee)
+			break;
+		box_empty(qb);
+		box_add(qb, g->x0 + 3 * v);
+		box_add(qb, g->x1 + 3 * v);
+		for (k = g->vedge_start[v]; k < g->vedge_start[v + 1]; k++) {
+			const int *en = g->edge + 2 * g->vedge[k];
+
+			box_add(qb, g->x0 + 3 * (en[0] == v ? en[1] : en[0]));
+		}
+		cube_range(h, qb, lo, hi);
+		for (y = lo[1]; y <= hi[1]; y++)
+			for (z = lo[2]; z <= hi[2]; z++)
+				for (x = lo[0]; x <= hi[0]; x++) {
+					const struct hash_cube *c = hash_find(h, hash_key(h, x, y, z));
+					int e;
+
+					for (e = c != NULL ? c->head : -1; e >= 0; e = h->next[e]) {
+						int t = h->item[e];
+
+						if ((size_t)t >= g->ntri || b->stamp[t] == v)
+							continue;
+						b->stamp[t] = v;
+						if (!tri_has(g, t, v) && !vt_static(g, v, t) &&
+						    box_overlap(qb, b->box + 6 * t) &&
+						    push_vt(b, v, t) != 0)
+							goto oom;
+					}
+				}
+	}
+	for (i = 0; want_ee && i < g->nedges; i++) {
+		const double *eb = b->box + 6 * (g->ntri + i);
+
+		cube_range(h, eb, lo, hi);
+		for (y = lo[1]; y <= hi[1]; y++)
+			for (z = lo[2]; z <= hi[2]; z++)
+				for (x = lo[0]; x <= hi[0]; x++) {
+					const struct hash_cube *c = hash_find(h, hash_key(h, x, y, z));
+					int e;
+
+					for (e = c != NULL ? c->head : -1; e >= 0; e = h->next[e]) {
+						size_t it = (size_t)h->item[e], o = it - g->ntri;
+
+						if (it < g->ntri || o <= i || b->stamp[it] == (int)i)
+							continue;
+						b->stamp[it] = (int)i;
+						if (!ee_skip(g, (int)i, (int)o) &&
+						    box_overlap(eb, b->box + 6 * it) &&
+						    push_ee(b, (int)i, (int)o) != 0)
+							goto oom;
+					}
+				}
+	}
+	hash_stats(h, &b->st.hash);
+	return 0;
+oom:
+	err_set(err, "broad phase: out of memory");
+	return -1;
+}
+
+static int
+find_brute(struct broad *b, const struct geom *g, bool want_ee, struct drape_err *err)
+{
+	size_t t, e, f;
+	int v;
+
+	for (v = 0; v < g->nv; v++) {
+		if (v >= g->ncloth && !want_ee)
+			break;
+		for (t = 0; t < g->ntri; t++)
+			if (!tri_has(g, (int)t, v) && !vt_static(g, v, (int)t) &&
+			    push_vt(b, v, (int)t) != 0)
+				goto oom;
+	}
+	for (e = 0; want_ee && e < g->nedges; e++)
+		for (f = e + 1; f < g->nedges; f++)
+			if (!ee_skip(g, (int)e, (int)f) && push_ee(b, (int)e, (int)f) != 0)
+				goto oom;
+	return 0;
+oom:
+	err_set(err, "broad phase: out of memory");
+	return -1;
+}
+
+int
+broad_find(struct broad *b, const struct geom *g, double cell, bool want_ee,
+    struct drape_err *err)
+{
+	int rc;
+
+	b->nvt = b->nee = 0;
+	memset(&b->st, 0, sizeof b->st);
+	b->st.cell = b->mode == BROAD_BRUTE ? 0 : cell;
+	switch (b->mode) {
+	case BROAD_SEED:
+		rc = find_seed(b, g, cell, want_ee, err);
+		break;
+	case BROAD_GRID:
+		rc = find_grid(b, g, cell, want_ee, err);
+		break;
+	default:
+		rc = find_brute(b, g, want_ee, err);
+		break;
+	}
+	if (rc != 0)
+		return -1;
+	if (b->mode != BROAD_BRUTE)
+		canonical(b);
+	b->st.vt_pairs = (long)b->nvt;
+	b->st.ee_pairs = (long)b->nee;
+	return 0;
+}

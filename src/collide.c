@@ -1,0 +1,678 @@
+/* collide.c: the collision stages of a step, in the order of the chapter's
+ * §4: broad phase, narrow phase, response, obstacles. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ccd.h"
+#include "collide.h"
+
+#define FAILSAFE_PASS 2		/* ccd: from this pass on, a hit node goes back to step k */
+
+static void *
+xcalloc(size_t n, size_t size)
+{
+	return calloc(n ? n : 1, size);
+}
+
+/* vertex -> items incidence, compressed (each item has `per` vertices) */
+static int
+incidence(const int *items, size_t nitems, int per, int nv, int **start, int **list)
+{
+	size_t i;
+	int k, *fill;
+
+	if ((*start = xcalloc((size_t)nv + 1, sizeof **start)) == NULL ||
+	    (*list = xcalloc(nitems * (size_t)per, sizeof **list)) == NULL ||
+	    (fill = xcalloc((size_t)nv, sizeof *fill)) == NULL)
+		return -1;
+	for (i = 0; i < nitems * (size_t)per; i++)
+		(*start)[items[i] + 1]++;
+	for (k = 0; k < nv; k++)
+		(*start)[k + 1] += (*start)[k];
+	for (i = 0; i < nitems; i++)
+		for (k = 0; k < per; k++) {
+			int v = items[i * (size_t)per + (size_t)k];
+
+			(*list)[(*start)[v] + fill[v]++] = (int)i;
+		}
+	free(fill);
+	return 0;
+}
+
+static int
+cmp_edge(const void *pa, const void *pb)
+{
+	const int *a = pa, *b = pb;
+
+	if (a[0] != b[0])
+		return a[0] < b[0] ? -1 : 1;
+	return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+/* The cloth's triangles and edges, then each obstacle mesh's, renumbered. */
+static int
+build_geometry(struct collide *c, const struct cloth *cl, const unsigned char *held)
+{
+	size_t o, t, nt = cl->ntri, ne = cl->nedges;
+	int nv = cl->n, k;
+
+	for (o = 0; o < c->nobst; o++)
+		if (c->obst[o].kind == OBSTACLE_MESH) {
+			nv += c->obst[o].mesh.nverts;
+			nt += c->obst[o].mesh.ntri;
+			ne += 3 * c->obst[o].mesh.ntri;	/* before removing repeats */
+		}
+	c->ncloth = cl->n;
+	c->nv = nv;
+	c->ntri_cloth = cl->ntri;
+	if ((c->x0 = xcalloc(3 * (size_t)nv, sizeof *c->x0)) == NULL ||
+	    (c->x1 = xcalloc(3 * (size_t)nv, sizeof *c->x1)) == NULL ||
+	    (c->v1 = xcalloc(3 * (size_t)nv, sizeof *c->v1)) == NULL ||
+	    (c->tri = xcalloc(3 * nt, sizeof *c->tri)) == NULL ||
+	    (c->edge = xcalloc(2 * ne, sizeof *c->edge)) == NULL ||
+	    (c->tri_obstacle = xcalloc(nt, sizeof *c->tri_obstacle)) == NULL ||
+	    (c->fixed = xcalloc((size_t)nv, 1)) == NULL ||
+	    (c->changed = xcalloc((size_t)nv, 1)) == NULL ||
+	    (c->changed_next = xcalloc((size_t)nv, 1)) == NULL ||
+	    (c->frozen = xcalloc((size_t)nv, 1)) == NULL ||
+	    (c->box = xcalloc(6 * (size_t)nv, sizeof *c->box)) == NULL)
+		return -1;
+	memcpy(c->tri, cl->tri, 3 * cl->ntri * sizeof *c->tri);
+	memcpy(c->edge, cl->edge, 2 * cl->nedges * sizeof *c->edge);
+	for (t = 0; t < cl->ntri; t++)
+		c->tri_obstacle[t] = -1;
+	for (k = 0; k < cl->n; k++)
+		c->fixed[k] = held != NULL && held[k];
+	c->ntri = cl->ntri;
+	c->nedges = cl->nedges;
+	nv = cl->n;
+	for (o = 0; o < c->nobst; o++) {
+		const struct mesh *m = &c->obst[o].mesh;
+		size_t first_edge = c->nedges, i, kept;
+
+		if (c->obst[o].kind != OBSTACLE_MESH)
+			continue;
+		memcpy(c->x0 + 3 * (size_t)nv, m->x, 3 * (size_t)m->nverts * sizeof *m->x);
+		memcpy(c->x1 + 3 * (size_t)nv, m->x, 3 * (size_t)m->nverts * sizeof *m->x);
+		for (k = 0; k < m->nverts; k++)
+			c->fixed[nv + k] = 1;
+		for (t = 0; t < m->ntri; t++) {
+			for (k = 0; k < 3; k++) {
+				int a = nv + m->tri[3 * t + (size_t)k];
+				int b = nv + m->tri[3 * t + (size_t)(k + 1) % 3];
+
+				c->tri[3 * c->ntri + (size_t)k] = a;
+				c->edge[2 * c->nedges] = a < b ? a : b;
+				c->edge[2 * c->nedges + 1] = a < b ? b : a;
+				c->nedges++;
+			}
+			c->tri_obstacle[c->ntri++] = (int)o;
+		}
+		/* a closed mesh has each edge twice */
+		qsort(c->edge + 2 * first_edge, c->nedges - first_edge, 2 * sizeof *c->edge, cmp_edge);
+		for (i = kept = first_edge; i < c->nedges; i++)
+			if (kept == first_edge || cmp_edge(c->edge + 2 * i, c->edge + 2 * (kept - 1)) != 0) {
+				c->edge[2 * kept] = c->edge[2 * i];
+				c->edge[2 * kept + 1] = c->edge[2 * i + 1];
+				kept++;
+			}
+		c->nedges = kept;
+		nv += m->nverts;
+	}
+	if (incidence(c->tri, c->ntri, 3, c->nv, &c->vtri_start, &c->vtri) != 0 ||
+	    incidence(c->edge, c->nedges, 2, c->nv, &c->vedge_start, &c->vedge) != 0)
+		return -1;
+	c->g = (struct geom){ c->nv, c->ncloth, c->x0, c->x1, c->tri, c->ntri, c->edge,
+	    c->nedges, c->vtri_start, c->vtri, c->vedge_start, c->vedge, c->fixed };
+	return 0;
+}
+
+int
+collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
+    const unsigned char *held, double dt, double vmax, struct drape_err *err)
+{
+	size_t o;
+	bool meshes = false;
+
+	memset(c, 0, sizeof *c);
+	c->opt = sc->col;
+	c->obst = sc->obstacles;
+	c->nobst = sc->nobstacles;
+	for (o = 0; o < c->nobst; o++)
+		meshes |= c->obst[o].kind == OBSTACLE_MESH;
+	c->pairs = c->opt.self || meshes;
+	c->active = c->pairs || c->nobst > 0;
+	broad_init(&c->br, c->opt.broad);
+	if (!c->active)
+		return 0;
+	if (build_geometry(c, cl, held) != 0) {
+		collide_free(c);
+		err_set(err, "%s: out of memory", sc->path);
+		return -1;
+	}
+	/* eq. 21: L_ce > V_max dt, and comparable with the triangles (§3.3);
+	 * the grid's cost, not its answer, depends on it */
+	c->cell = c->opt.cell > 0 ? c->opt.cell :
+	    c->opt.broad == BROAD_SEED ? fmax(cl->h, 1.5 * vmax * dt) : cl->h;
+	return 0;
+}
+
+void
+collide_free(struct collide *c)
+{
+	broad_free(&c->br);
+	free(c->x0);
+	free(c->x1);
+	free(c->v1);
+	free(c->tri);
+	free(c->edge);
+	free(c->vtri_start);
+	free(c->vtri);
+	free(c->vedge_start);
+	free(c->vedge);
+	free(c->tri_obstacle);
+	free(c->fixed);
+	free(c->changed);
+	free(c->changed_next);
+	free(c->frozen);
+	free(c->box);
+	free(c->ev);
+	memset(c, 0, sizeof *c);
+}
+
+static vec3 X0(const struct collide *c, int v) { return v3_load(c->x0 + 3 * v); }
+static vec3 X1(const struct collide *c, int v) { return v3_load(c->x1 + 3 * v); }
+static vec3 V1(const struct collide *c, int v) { return v3_load(c->v1 + 3 * v); }
+
+static int
+add_event(struct collide *c, long step, int node, enum contact_type type, int other,
+    int obstacle, vec3 q, vec3 n, double vn_before, double vn_after)
+{
+	struct contact_event *e;
+
+	if (c->nev == c->evcap) {
+		size_t cap = c->evcap ? 2 * c->evcap : 64;
+		struct contact_event *ne = realloc(c->ev, cap * sizeof *ne);
+
+		if (ne == NULL)
+			return -1;
+		c->ev = ne;
+		c->evcap = cap;
+	}
+	e = &c->ev[c->nev++];
+	*e = (struct contact_event){ step, node, type, other, obstacle, q, n, vn_before, vn_after };
+	c->st.contacts[type]++;
+	c->st.corrections++;
+	return 0;
+}
+
+static struct friction
+friction_of(const struct collide *c, int obstacle)
+{
+	struct friction f = { c->opt.friction, c->opt.viscous };
+
+	if (obstacle >= 0)
+		f.mu = c->obst[obstacle].friction;
+	return f;
+}
+
+/* Keeps a corrected position inside the node's swept box of this step, so
+ * that the broad phase's pairs still cover it. */
+static vec3
+clamp_box(const struct collide *c, int v, vec3 p)
+{
+	const double *b = c->box + 6 * v;
+
+	return v3(fmin(fmax(p.x, b[0]), b[3]), fmin(fmax(p.y, b[1]), b[4]),
+	    fmin(fmax(p.z, b[2]), b[5]));
+}
+
+/*
+ * The position policy of §3.2 for node v hit along n: keep step k's
+ * position (the chapter's choice, after Volino et al.), move to Q, or slide:
+ * step k's offset along n plus the surface's own normal motion dqn, with
+ * this step's tangential motion (the chapter notes that keeping the whole
+ * position can lock a node that should slide).
+ */
+static vec3
+place(const struct collide *c, int v, vec3 q, vec3 n, double dqn)
+{
+	vec3 p0 = X0(c, v), d = v3_sub(X1(c, v), p0);
+
+	switch (c->opt.position) {
+	case POSITION_Q:
+		return q;
+	case POSITION_SLIDE:
+		return v3_madd(v3_add(p0, v3_madd(d, n, -v3_dot(d, n))), n, dqn);
+	default:
+		return p0;
+	}
+}
+
+/* Node v corrected against a surface point q moving at vq. */
+static int
+correct_node(struct collide *c, long step, double dt, int v, enum contact_type type, int other,
+    int obstacle, vec3 q, vec3 n, vec3 vq, bool ccd)
+{
+	struct friction fr = friction_of(c, obstacle);
+	vec3 vd = V1(c, v), vn = response_node_velocity(vd, n, vq, c->opt.restitution, &fr, dt);
+	vec3 p = place(c, v, q, n, v3_dot(vq, n) * dt);
+
+	if (ccd)
+		p = clamp_box(c, v, p);
+	v3_store(c->v1 + 3 * v, vn);
+	v3_store(c->x1 + 3 * v, p);
+	c->changed_next[v] = 1;
+	return add_event(c, step, v, type, other, obstacle, q, n, v3_dot(vd, n), v3_dot(vn, n));
+}
+
+/* ---- narrow = seed: the chapter's procedure, once ---- */
+
+static int
+seed_pass(struct collide *c, long step, double dt, unsigned char *hit)
+{
+	const struct vt_pair *vt = c->br.vt;
+	size_t i = 0, j, nvt = c->br.nvt;
+
+	while (i < nvt) {
+		int v = vt[i].v, done = 0;
+
+		for (j = i; j < nvt && vt[j].v == v; j++)
+			;
+		for (; i < j && !done && v < c->ncloth && !c->fixed[v]; i++) {
+			int t = vt[i].t, k, s;
+			const int *tn = c->tri + 3 * t;
+			vec3 a = X0(c, tn[0]), b = X0(c, tn[1]), cc = X0(c, tn[2]), d = X1(c, v);
+			struct seed_hit h;
+
+			if (!c->opt.self && c->tri_obstacle[t] < 0)
+				continue;
+			/* the node's own path, then the edges of its triangles
+			 * (the sliding case at the end of §3.2) */
+			for (s = -1; s < c->vedge_start[v + 1] - c->vedge_start[v]; s++) {
+				int f = v;
+				vec3 vq;
+
+				if (s >= 0) {
+					const int *en = c->edge + 2 * c->vedge[c->vedge_start[v] + s];
+
+					f = en[0] == v ? en[1] : en[0];
+					/* an edge that touches the triangle is adjacent to it */
+					if (tn[0] == f || tn[1] == f || tn[2] == f)
+						continue;
+				}
+				c->st.narrow_tests++;
+				if (!narrow_seed_segment(X0(c, f), d, a, b, cc, c->opt.inside, &h))
+					continue;
+				vq = response_point_velocity(a, b, cc, V1(c, tn[0]), V1(c, tn[1]),
+				    V1(c, tn[2]), h.q);
+				k = correct_node(c, step, dt, v, s < 0 ? h.type : CONTACT_EDGE_EDGE, t,
+				    c->tri_obstacle[t], h.q, h.n, vq, false);
+				if (k != 0)
+					return -1;
+				hit[v] = 1;
+				done = 1;	/* "at the first detected collision, the procedure stops" */
+				break;
+			}
+		}
+		i = j;
+	}
+	return 0;
+}
+
+/* ---- narrow = ccd ---- */
+
+static vec3
+lerp(vec3 a, vec3 b, double t)
+{
+	return v3_madd(a, v3_sub(b, a), t);
+}
+
+static bool
+moves(const struct collide *c, int v)
+{
+	const double *a = c->x0 + 3 * v, *b = c->x1 + 3 * v;
+
+	return a[0] != b[0] || a[1] != b[1] || a[2] != b[2];
+}
+
+/* Puts a movable node back to step k: the last resort. */
+static void
+freeze(struct collide *c, int v)
+{
+	if (v >= c->ncloth || c->fixed[v])
+		return;
+	if (!c->frozen[v]) {
+		c->frozen[v] = 1;
+		c->st.frozen++;
+	}
+	if (moves(c, v)) {
+		memcpy(c->x1 + 3 * v, c->x0 + 3 * v, 3 * sizeof *c->x1);
+		c->changed_next[v] = 1;
+	}
+	/* and step k's velocity: a node held in place must not gather speed
+	 * from forces it is not allowed to follow */
+	memcpy(c->v1 + 3 * v, c->v0 + 3 * v, 3 * sizeof *c->v1);
+}
+
+static vec3
+unit_or(vec3 a, vec3 fallback)
+{
+	double l = v3_len(a);
+
+	return l > 0 && isfinite(l) ? v3_scale(a, 1 / l) : fallback;
+}
+
+static int
+ccd_vertex_triangle(struct collide *c, long step, double dt, int v, int t, double toi, int pass)
+{
+	const int *tn = c->tri + 3 * t;
+	vec3 p = lerp(X0(c, v), X1(c, v), toi), a = lerp(X0(c, tn[0]), X1(c, tn[0]), toi);
+	vec3 b = lerp(X0(c, tn[1]), X1(c, tn[1]), toi), cc = lerp(X0(c, tn[2]), X1(c, tn[2]), toi);
+	vec3 n = v3_cross(v3_sub(b, a), v3_sub(cc, a)), q, vq;
+	int obstacle = c->tri_obstacle[t], k;
+
+	n = unit_or(n, unit_or(v3_sub(X0(c, v), X0(c, tn[0])), v3(0, 1, 0)));
+	q = v3_madd(p, n, -v3_dot(v3_sub(p, a), n));
+	vq = response_point_velocity(a, b, cc, V1(c, tn[0]), V1(c, tn[1]), V1(c, tn[2]), q);
+	if (pass >= FAILSAFE_PASS) {
+		freeze(c, v);
+		for (k = 0; k < 3; k++)
+			freeze(c, tn[k]);
+	}
+	if (v < c->ncloth && !c->fixed[v]) {
+		if (pass >= FAILSAFE_PASS) {
+			struct friction fr = friction_of(c, obstacle);
+			vec3 vd = V1(c, v), vn = response_node_velocity(vd, n, vq,
+			    c->opt.restitution, &fr, dt);
+
+			v3_store(c->v1 + 3 * v, vn);
+			return add_event(c, step, v, CONTACT_NODE_FACE, t, obstacle, q, n,
+			    v3_dot(vd, n), v3_dot(vn, n));
+		}
+		return correct_node(c, step, dt, v, CONTACT_NODE_FACE, t, obstacle, q, n, vq, true);
+	}
+	/* the vertex cannot move (held, or an obstacle's): the triangle's
+	 * nodes take its normal velocity */
+	for (k = 0; k < 3; k++) {
+		int w = tn[k];
+		vec3 vd = V1(c, w), vn;
+
+		if (w >= c->ncloth || c->fixed[w])
+			continue;
+		vn = response_node_velocity(vd, n, V1(c, v), c->opt.restitution, NULL, dt);
+		v3_store(c->v1 + 3 * w, vn);
+		if (pass < FAILSAFE_PASS) {
+			v3_store(c->x1 + 3 * w, clamp_box(c, w, place(c, w, X1(c, w), n,
+			    v3_dot(V1(c, v), n) * dt)));
+			c->changed_next[w] = 1;
+		}
+		if (add_event(c, step, w, CONTACT_NODE_FACE, t, obstacle, p, n, v3_dot(vd, n),
+		    v3_dot(vn, n)) != 0)
+			return -1;
+	}
+	return 0;
+}
+
+/* Closest points of segments p0-p1 and q0-q1: parameters s and u. */
+static void
+segment_params(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
+{
+	vec3 d1 = v3_sub(p1, p0), d2 = v3_sub(q1, q0), r = v3_sub(p0, q0);
+	double a = v3_dot(d1, d1), e = v3_dot(d2, d2), f = v3_dot(d2, r);
+	double cc = v3_dot(d1, r), b = v3_dot(d1, d2), den = a * e - b * b;
+
+	*s = den > 0 ? fmin(fmax((b * f - cc * e) / den, 0), 1) : 0;
+	*u = e > 0 ? (b * *s + f) / e : 0;
+	if (*u < 0 || *u > 1) {
+		*u = fmin(fmax(*u, 0), 1);
+		*s = a > 0 ? fmin(fmax((b * *u - cc) / a, 0), 1) : 0;
+	}
+}
+
+static int
+ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, int pass)
+{
+	const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb, *tmp;
+	vec3 pa0, pa1, pb0, pb1, n, q, vq;
+	double s, u;
+	int k, obstacle = -1;
+
+	/* the nodes of the first edge that can move are corrected */
+	if ((na[0] >= c->ncloth || c->fixed[na[0]]) && (na[1] >= c->ncloth || c->fixed[na[1]])) {
+		tmp = na, na = nb, nb = tmp;
+		k = ea, ea = eb, eb = k;
+	}
+	if (nb[0] >= c->ncloth) {
+		size_t t;
+
+		/* the obstacle whose vertices these are */
+		for (t = c->ntri_cloth; t < c->ntri; t++) {
+			const int *tn = c->tri + 3 * t;
+
+			if (tn[0] == nb[0] || tn[1] == nb[0] || tn[2] == nb[0]) {
+				obstacle = c->tri_obstacle[t];
+				break;
+			}
+		}
+	}
+	pa0 = lerp(X0(c, na[0]), X1(c, na[0]), toi);
+	pa1 = lerp(X0(c, na[1]), X1(c, na[1]), toi);
+	pb0 = lerp(X0(c, nb[0]), X1(c, nb[0]), toi);
+	pb1 = lerp(X0(c, nb[1]), X1(c, nb[1]), toi);
+	segment_params(pa0, pa1, pb0, pb1, &s, &u);
+	q = lerp(pb0, pb1, u);
+	n = unit_or(v3_cross(v3_sub(pa1, pa0), v3_sub(pb1, pb0)),
+	    unit_or(v3_sub(lerp(pa0, pa1, s), q), v3(0, 1, 0)));
+	/* the normal points from edge b towards edge a at step k */
+	if (v3_dot(n, v3_sub(lerp(X0(c, na[0]), X0(c, na[1]), s),
+	    lerp(X0(c, nb[0]), X0(c, nb[1]), u))) < 0)
+		n = v3_neg(n);
+	vq = lerp(V1(c, nb[0]), V1(c, nb[1]), u);
+	if (pass >= FAILSAFE_PASS)
+		for (k = 0; k < 2; k++) {
+			freeze(c, na[k]);
+			freeze(c, nb[k]);
+		}
+	for (k = 0; k < 2; k++) {
+		int w = na[k];
+
+		if (w >= c->ncloth || c->fixed[w])
+			continue;
+		if (pass >= FAILSAFE_PASS) {
+			struct friction fr = friction_of(c, obstacle);
+			vec3 vd = V1(c, w), vn = response_node_velocity(vd, n, vq,
+			    c->opt.restitution, &fr, dt);
+
+			v3_store(c->v1 + 3 * w, vn);
+			if (add_event(c, step, w, CONTACT_EDGE_EDGE, eb, obstacle, q, n,
+			    v3_dot(vd, n), v3_dot(vn, n)) != 0)
+				return -1;
+		} else if (correct_node(c, step, dt, w, CONTACT_EDGE_EDGE, eb, obstacle, q, n, vq,
+		    true) != 0)
+			return -1;
+	}
+	return 0;
+}
+
+/* Analytic obstacles for node v; returns 1 if one corrected it. The
+ * obstacles are convex, so the plane through step k's closest surface
+ * point q0, normal to x0 - q0, has the whole solid behind it: the node is
+ * put on that plane at Q (q), at step k's clearance above it (slide), or
+ * back at step k (keep), and is outside in each case. */
+static int
+obstacles_node(struct collide *c, long step, double dt, int v, bool ccd)
+{
+	size_t o;
+
+	for (o = 0; o < c->nobst; o++) {
+		const struct obstacle *ob = &c->obst[o];
+		struct friction fr = friction_of(c, (int)o);
+		vec3 q, n, q0, n0, p, vd = V1(c, v), vn;
+		double d0;
+
+		if (ob->kind == OBSTACLE_MESH || obstacle_distance(ob, X1(c, v), &q, &n) >= 0)
+			continue;
+		if ((d0 = obstacle_distance(ob, X0(c, v), &q0, &n0)) >= 0) {
+			n = n0;
+			q = v3_madd(X1(c, v), n, -v3_dot(v3_sub(X1(c, v), q0), n));
+		}
+		vn = response_node_velocity(vd, n, v3(0, 0, 0), c->opt.restitution, &fr, dt);
+		p = c->opt.position == POSITION_Q || d0 < 0 ? q :
+		    c->opt.position == POSITION_SLIDE ? v3_madd(q, n, d0) : X0(c, v);
+		if (ccd && c->pairs)
+			p = clamp_box(c, v, p);
+		if (obstacle_distance(ob, p, NULL, NULL) < 0) {
+			/* the clamp pushed it back in: stay at step k, at rest on
+			 * the surface, so that no speed builds up in place */
+			p = d0 >= 0 ? X0(c, v) : q;
+			vn = v3(0, 0, 0);
+		}
+		v3_store(c->v1 + 3 * v, vn);
+		v3_store(c->x1 + 3 * v, p);
+		c->changed_next[v] = 1;
+		if (add_event(c, step, v, CONTACT_OBSTACLE, -1, (int)o, q, n, v3_dot(vd, n),
+		    v3_dot(vn, n)) != 0)
+			return -1;
+		return 1;
+	}
+	return 0;
+}
+
+static int
+ccd_passes(struct collide *c, long step, double dt)
+{
+	int pass, v, max_pass = c->ncloth + FAILSAFE_PASS + 1;
+	size_t i;
+
+	memset(c->frozen, 0, (size_t)c->nv);
+	memset(c->changed, 1, (size_t)c->nv);
+	for (pass = 0; pass < max_pass; pass++) {
+		long before = c->st.corrections;
+
+		memset(c->changed_next, 0, (size_t)c->nv);
+		for (i = 0; c->pairs && i < c->br.nvt; i++) {
+			int vv = c->br.vt[i].v, t = c->br.vt[i].t;
+			const int *tn = c->tri + 3 * t;
+			vec3 x0[4], x1[4];
+			double toi;
+			int k;
+
+			if (!c->opt.self && c->tri_obstacle[t] < 0 && vv < c->ncloth)
+				continue;
+			if (!c->changed[vv] && !c->changed[tn[0]] && !c->changed[tn[1]] &&
+			    !c->changed[tn[2]])
+				continue;
+			if (!moves(c, vv) && !moves(c, tn[0]) && !moves(c, tn[1]) && !moves(c, tn[2]))
+				continue;
+			x0[0] = X0(c, vv);
+			x1[0] = X1(c, vv);
+			for (k = 0; k < 3; k++) {
+				x0[k + 1] = X0(c, tn[k]);
+				x1[k + 1] = X1(c, tn[k]);
+			}
+			c->st.narrow_tests++;
+			if (ccd_vertex_face(x0, x1, 0, &toi) &&
+			    ccd_vertex_triangle(c, step, dt, vv, t, toi, pass) != 0)
+				return -1;
+		}
+		for (i = 0; c->pairs && i < c->br.nee; i++) {
+			int ea = c->br.ee[i].a, eb = c->br.ee[i].b, k;
+			const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb;
+			vec3 x0[4], x1[4];
+			double toi;
+
+			if (!c->opt.self && na[0] < c->ncloth && nb[0] < c->ncloth)
+				continue;
+			if (!c->changed[na[0]] && !c->changed[na[1]] && !c->changed[nb[0]] &&
+			    !c->changed[nb[1]])
+				continue;
+			if (!moves(c, na[0]) && !moves(c, na[1]) && !moves(c, nb[0]) && !moves(c, nb[1]))
+				continue;
+			for (k = 0; k < 2; k++) {
+				x0[k] = X0(c, na[k]);
+				x1[k] = X1(c, na[k]);
+				x0[k + 2] = X0(c, nb[k]);
+				x1[k + 2] = X1(c, nb[k]);
+			}
+			c->st.narrow_tests++;
+			if (ccd_edge_edge(x0, x1, 0, &toi) &&
+			    ccd_edges(c, step, dt, ea, eb, toi, pass) != 0)
+				return -1;
+		}
+		for (v = 0; v < c->ncloth; v++) {
+			int r;
+
+			if (!c->changed[v] || c->fixed[v] || c->frozen[v])
+				continue;
+			if ((r = obstacles_node(c, step, dt, v, true)) < 0)
+				return -1;
+			if (r && pass >= FAILSAFE_PASS)
+				freeze(c, v);
+		}
+		c->st.passes = pass + 1;
+		if (c->st.corrections == before)
+			return 0;
+		memcpy(c->changed, c->changed_next, (size_t)c->nv);
+	}
+	c->st.unresolved++;
+	return 0;
+}
+
+int
+collide_step(struct collide *c, long step, double dt, const double *y0, double *y1,
+    struct drape_err *err)
+{
+	size_t n3 = 3 * (size_t)c->ncloth, k;
+	int v;
+
+	c->nev = 0;
+	memset(&c->st, 0, sizeof c->st);
+	if (!c->active)
+		return 0;
+	memcpy(c->x0, y0, n3 * sizeof *c->x0);
+	c->v0 = y0 + n3;
+	memcpy(c->x1, y1, n3 * sizeof *c->x1);
+	memcpy(c->v1, y1 + n3, n3 * sizeof *c->v1);
+	for (v = 0; v < c->ncloth; v++) {
+		double *b = c->box + 6 * v;
+
+		for (k = 0; k < 3; k++) {
+			b[k] = fmin(c->x0[3 * v + k], c->x1[3 * v + k]);
+			b[3 + k] = fmax(c->x0[3 * v + k], c->x1[3 * v + k]);
+		}
+	}
+	if (c->pairs && broad_find(&c->br, &c->g, c->cell, c->opt.narrow == NARROW_CCD, err) != 0)
+		return -1;
+	c->st.broad = c->br.st;
+	if (c->opt.narrow == NARROW_SEED) {
+		memset(c->changed, 0, (size_t)c->nv);
+		if (c->pairs && seed_pass(c, step, dt, c->changed) != 0)
+			goto oom;
+		/* §4: the obstacles, for the nodes with no self-contact */
+		for (v = 0; v < c->ncloth; v++)
+			if (!c->changed[v] && !c->fixed[v] && obstacles_node(c, step, dt, v, false) < 0)
+				goto oom;
+		c->st.passes = 1;
+	} else if (ccd_passes(c, step, dt) != 0) {
+		goto oom;
+	}
+	memcpy(y1, c->x1, n3 * sizeof *y1);
+	memcpy(y1 + n3, c->v1, n3 * sizeof *y1);
+
+	c->total.narrow_tests += c->st.narrow_tests;
+	for (k = 0; k < CONTACT_NTYPES; k++)
+		c->total.contacts[k] += c->st.contacts[k];
+	c->total.corrections += c->st.corrections;
+	c->total.frozen += c->st.frozen;
+	c->total.unresolved += c->st.unresolved;
+	c->total.broad.node_pairs += c->st.broad.node_pairs;
+	c->total.broad.vt_pairs += c->st.broad.vt_pairs;
+	c->total.broad.ee_pairs += c->st.broad.ee_pairs;
+	c->total.passes = c->st.passes > c->total.passes ? c->st.passes : c->total.passes;
+	return 0;
+oom:
+	err_set(err, "collisions: out of memory");
+	return -1;
+}

@@ -1,0 +1,47 @@
+/* narrow.h: the chapter's node-triangle test (§3.1, eq. 1-10).
+ *
+ * A segment r from F (a node at the consistent step k) to D (a node at the
+ * predicted step k+1) is tested against a triangle ABC at step k. F is D
+ * itself at step k for a node's own path (the icosahedron test), or the
+ * other end of an edge that holds D (edge-edge and sliding contact, end of
+ * §3.2). The continuous test that never misses is in ccd.h. */
+#ifndef DRAPE_NARROW_H
+#define DRAPE_NARROW_H
+
+#include "vec3.h"
+
+/* How eq. 9-10's question "is Q inside ABC?" is answered. */
+enum inside_test {
+	INSIDE_ANGLE,		/* angle sum 2*pi within eps = 2*pi/100 (eq. 9-10) */
+	INSIDE_CROSSING,	/* crossings of a ray from Q with the edges */
+};
+
+enum contact_type {
+	CONTACT_NODE_NODE,	/* Q on a vertex of the triangle */
+	CONTACT_NODE_EDGE,	/* Q on an edge: an angle about Q is pi */
+	CONTACT_NODE_FACE,	/* Q inside the face */
+	CONTACT_EDGE_EDGE,	/* r is an edge F-D and D did not cross itself */
+	CONTACT_OBSTACLE,	/* a node in an analytic obstacle */
+};
+#define CONTACT_NTYPES 5
+
+extern const char *const contact_type_name[CONTACT_NTYPES];
+
+struct seed_hit {
+	vec3 q;			/* eq. 8 */
+	double tq;		/* eq. 7, in [0, 1] along F -> D */
+	vec3 n;			/* unit normal of ABC, (B-A) x (C-A) */
+	enum contact_type type;	/* node-node, node-edge or node-face */
+	int feature;		/* the vertex (0..2) or the edge (0 AB, 1 BC, 2 CA) */
+};
+
+/* Epsilon of eq. 10. */
+#define SEED_EPS (2 * V3_PI / 100)
+
+/* 1 if r = F -> D crosses the plane of ABC (eq. 1-2, signs of opposite
+ * sense, or D on the plane) at a Q inside the triangle (eq. 3-10); 0 if not
+ * or if the triangle is degenerate. */
+int narrow_seed_segment(vec3 f, vec3 d, vec3 a, vec3 b, vec3 c,
+    enum inside_test how, struct seed_hit *hit);
+
+#endif

@@ -1,0 +1,60 @@
+/* response.c: eq. 11-17. */
+#include <math.h>
+#include <stddef.h>
+
+#include "response.h"
+
+vec3
+response_point_velocity(vec3 a, vec3 b, vec3 c, vec3 va, vec3 vb, vec3 vc, vec3 q)
+{
+	vec3 ab = v3_sub(b, a), ac = v3_sub(c, a);
+	double lab = v3_len(ab), lac = v3_len(ac), lk;
+	vec3 i, w, k, j, vi, vw, vk, vj, cr, omega;
+
+	if (lab == 0 || lac == 0)
+		return va;
+	/* eq. 13: the frame fixed to the triangle and its rates */
+	i = v3_scale(ab, 1 / lab);
+	vi = v3_scale(v3_sub(vb, va), 1 / lab);
+	w = v3_scale(ac, 1 / lac);
+	vw = v3_scale(v3_sub(vc, va), 1 / lac);
+	cr = v3_cross(i, w);
+	if ((lk = v3_len(cr)) == 0)
+		return va;
+	k = v3_scale(cr, 1 / lk);
+	vk = v3_scale(v3_add(v3_cross(vi, w), v3_cross(i, vw)), 1 / lk);
+	j = v3_cross(k, i);
+	vj = v3_add(v3_cross(vk, i), v3_cross(k, vi));
+	/* eq. 14 */
+	omega = v3_add(v3_add(v3_scale(i, v3_dot(vj, k)), v3_scale(j, v3_dot(vk, i))),
+	    v3_scale(k, v3_dot(vi, j)));
+	/* eq. 15 */
+	return v3_add(va, v3_cross(omega, v3_sub(q, a)));
+}
+
+vec3
+response_node_velocity(vec3 vd, vec3 n, vec3 vq, double e, const struct friction *fr, double dt)
+{
+	double vdn = v3_dot(vd, n), vqn = v3_dot(vq, n);
+	/* eq. 11: along the normal k' the node takes -e v_D + (1+e) v_Q;
+	 * e = 0 is eq. 12, the node takes Q's normal velocity */
+	double vn_after = -e * vdn + (1 + e) * vqn;
+	/* eq. 17: the tangential part, untouched by the impact */
+	vec3 vt = v3_madd(vd, n, -vdn);
+
+	if (fr != NULL && (fr->mu > 0 || fr->viscous > 0)) {
+		/* friction acts on the sliding velocity, relative to Q's */
+		vec3 vqt = v3_madd(vq, n, -vqn), rel = v3_sub(vt, vqt);
+		double s = v3_len(rel), keep = 1;
+
+		if (s > 0) {
+			if (fr->mu > 0)
+				keep = fmax(0, 1 - fr->mu * fabs(vn_after - vdn) / s);
+			if (fr->viscous > 0)
+				keep *= exp(-fr->viscous * dt);
+			vt = v3_madd(vqt, rel, keep);
+		}
+	}
+	/* eq. 16: v_D+ = v_D- - v_Dk'- + v_Qk' (with e) */
+	return v3_madd(vt, n, vn_after);
+}

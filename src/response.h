@@ -1,0 +1,27 @@
+/* response.h: the collision response of the chapter's §3.2 (eq. 11-17):
+ * a central, oblique impact of a node on a much heavier triangle, along
+ * the triangle's normal at the contact point Q. */
+#ifndef DRAPE_RESPONSE_H
+#define DRAPE_RESPONSE_H
+
+#include "vec3.h"
+
+/* What acts on the tangential part (eq. 17), which the impact leaves as it
+ * is unless the scene asks for friction. */
+struct friction {
+	double mu;		/* Coulomb: the tangential speed falls by mu |dv_n| */
+	double viscous;		/* 1/s: the tangential speed decays at this rate */
+};
+
+/* eq. 13-15: the velocity of the point Q of triangle ABC (positions a, b, c,
+ * velocities va, vb, vc) from its moving frame and angular velocity. */
+vec3 response_point_velocity(vec3 a, vec3 b, vec3 c, vec3 va, vec3 vb, vec3 vc, vec3 q);
+
+/* eq. 11-12 and 16-17: the node's velocity after the impact, given its
+ * velocity before (vd), the unit normal n and Q's velocity vq; e is the
+ * restitution coefficient (0: perfectly inelastic). Friction acts on the
+ * velocity relative to Q's over a step of length dt. */
+vec3 response_node_velocity(vec3 vd, vec3 n, vec3 vq, double e, const struct friction *fr,
+    double dt);
+
+#endif

@@ -113,12 +113,14 @@ canonical(struct broad *b)
 {
 	size_t i, k;
 
-	qsort(b->vt, b->nvt, sizeof *b->vt, cmp_vt);
+	if (b->nvt > 0)		/* qsort may not take a null array */
+		qsort(b->vt, b->nvt, sizeof *b->vt, cmp_vt);
 	for (i = k = 0; i < b->nvt; i++)
 		if (k == 0 || b->vt[i].v != b->vt[k - 1].v || b->vt[i].t != b->vt[k - 1].t)
 			b->vt[k++] = b->vt[i];
 	b->nvt = k;
-	qsort(b->ee, b->nee, sizeof *b->ee, cmp_ee);
+	if (b->nee > 0)
+		qsort(b->ee, b->nee, sizeof *b->ee, cmp_ee);
 	for (i = k = 0; i < b->nee; i++)
 		if (k == 0 || b->ee[i].a != b->ee[k - 1].a || b->ee[i].b != b->ee[k - 1].b)
 			b->ee[k++] = b->ee[i];

@@ -444,19 +444,8 @@ ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, i
 		tmp = na, na = nb, nb = tmp;
 		k = ea, ea = eb, eb = k;
 	}
-	if (nb[0] >= c->ncloth) {
-		size_t t;
-
-		/* the obstacle whose vertices these are */
-		for (t = c->ntri_cloth; t < c->ntri; t++) {
-			const int *tn = c->tri + 3 * t;
-
-			if (tn[0] == nb[0] || tn[1] == nb[0] || tn[2] == nb[0]) {
-				obstacle = c->tri_obstacle[t];
-				break;
-			}
-		}
-	}
+	if (nb[0] >= c->ncloth)	/* an obstacle's edge: its vertex's first triangle says which */
+		obstacle = c->tri_obstacle[c->vtri[c->vtri_start[nb[0]]]];
 	pa0 = lerp(X0(c, na[0]), X1(c, na[0]), toi);
 	pa1 = lerp(X0(c, na[1]), X1(c, na[1]), toi);
 	pb0 = lerp(X0(c, nb[0]), X1(c, nb[0]), toi);
@@ -635,7 +624,7 @@ collide_step(struct collide *c, long step, double dt, const double *y0, double *
 	c->v0 = y0 + n3;
 	memcpy(c->x1, y1, n3 * sizeof *c->x1);
 	memcpy(c->v1, y1 + n3, n3 * sizeof *c->v1);
-	for (v = 0; v < c->ncloth; v++) {
+	for (v = 0; c->opt.narrow == NARROW_CCD && v < c->ncloth; v++) {	/* for clamp_box */
 		double *b = c->box + 6 * v;
 
 		for (k = 0; k < 3; k++) {

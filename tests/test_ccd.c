@@ -5,12 +5,10 @@
 #include <unistd.h>
 
 #include "testutil.h"
+#include "runbin.h"
 #include "ccd.h"
 
-#define DRAPE TOP_BUILDDIR "/src/drape"
 #define QUERIES TOP_SRCDIR "/tests/data/ccd-sample-queries/unit-tests/"
-
-static char dir[] = "/tmp/drape-ccd-XXXXXX";
 
 /* The unit triangle in z = 0, still; the vertex moves from p to q. */
 static int
@@ -232,40 +230,6 @@ exact_contacts_never_missed(void **state)
 
 /* ---- the binary ---- */
 
-struct result {
-	int status;
-	char out[8192];
-	char err[4096];
-};
-
-static void
-slurp(const char *path, char *buf, size_t len)
-{
-	FILE *f = fopen(path, "r");
-	size_t n = 0;
-
-	if (f != NULL) {
-		n = fread(buf, 1, len - 1, f);
-		fclose(f);
-	}
-	buf[n] = '\0';
-}
-
-static void
-drape(struct result *r, const char *args)
-{
-	char cmd[2048], out[600], err[600];
-	int st;
-
-	snprintf(out, sizeof out, "%s/out", dir);
-	snprintf(err, sizeof err, "%s/err", dir);
-	snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>'%s' </dev/null", DRAPE, args, out, err);
-	st = system(cmd);
-	assert_true(st != -1 && WIFEXITED(st));
-	r->status = WEXITSTATUS(st);
-	slurp(out, r->out, sizeof r->out);
-	slurp(err, r->err, sizeof r->err);
-}
 
 #define FILES QUERIES "vertex-face/data_0_0.csv " QUERIES "vertex-face/data_0_1.csv " \
 	QUERIES "edge-edge/data_0_0.csv " QUERIES "edge-edge/data_0_1.csv"
@@ -406,22 +370,6 @@ options(void **state)
 	}
 }
 
-static int
-setup(void **state)
-{
-	(void)state;
-	return mkdtemp(dir) == NULL ? -1 : 0;
-}
-
-static int
-teardown(void **state)
-{
-	char cmd[600];
-
-	(void)state;
-	snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-	return system(cmd) == 0 ? 0 : -1;
-}
 
 int
 main(void)

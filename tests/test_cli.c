@@ -6,46 +6,9 @@
 
 #include "config.h"
 #include "testutil.h"
+#include "runbin.h"
 
-#define DRAPE TOP_BUILDDIR "/src/drape"
 
-static char dir[] = "/tmp/drape-test-XXXXXX";
-
-struct result {
-	int status;
-	char out[16384];
-	char err[4096];
-};
-
-static void
-slurp(const char *path, char *buf, size_t len)
-{
-	FILE *f = fopen(path, "r");
-	size_t n = 0;
-
-	if (f != NULL) {
-		n = fread(buf, 1, len - 1, f);
-		fclose(f);
-	}
-	buf[n] = '\0';
-}
-
-/* Runs "drape ARGS" with stdout and stderr captured. */
-static void
-drape(struct result *r, const char *args)
-{
-	char cmd[2048], out[600], err[600];
-	int st;
-
-	snprintf(out, sizeof out, "%s/out", dir);
-	snprintf(err, sizeof err, "%s/err", dir);
-	snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>'%s' </dev/null", DRAPE, args, out, err);
-	st = system(cmd);
-	assert_true(st != -1 && WIFEXITED(st));
-	r->status = WEXITSTATUS(st);
-	slurp(out, r->out, sizeof r->out);
-	slurp(err, r->err, sizeof r->err);
-}
 
 static const char *
 write_scene(const char *name, const char *text)
@@ -71,22 +34,6 @@ run_text(struct result *r, const char *name, const char *text)
 	drape(r, args);
 }
 
-static int
-setup(void **state)
-{
-	(void)state;
-	return mkdtemp(dir) == NULL ? -1 : 0;
-}
-
-static int
-teardown(void **state)
-{
-	char cmd[600];
-
-	(void)state;
-	snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-	return system(cmd) == 0 ? 0 : -1;
-}
 
 static void
 help_and_version(void **state)

@@ -12,12 +12,14 @@ broad_init(struct broad *b, enum broad_mode mode)
 	memset(b, 0, sizeof *b);
 	b->mode = mode;
 	hash_init(&b->hash);
+	hash_init(&b->hash_edges);
 }
 
 void
 broad_free(struct broad *b)
 {
 	hash_free(&b->hash);
+	hash_free(&b->hash_edges);
 	free(b->vt);
 	free(b->ee);
 	free(b->stamp);
@@ -106,6 +108,40 @@ cmp_ee(const void *pa, const void *pb)
 	return (a->b > b->b) - (a->b < b->b);
 }
 
+/* Sorts the pairs of each run of one vertex (edge) by triangle (edge):
+ * grid finds them vertex by vertex, in a few pairs a run, so insertion sort
+ * beats a global sort. */
+static void
+sort_runs(struct broad *b)
+{
+	size_t i, j, k;
+
+	for (i = 0; i < b->nvt; i = j) {
+		for (j = i + 1; j < b->nvt && b->vt[j].v == b->vt[i].v; j++)
+			;
+		for (k = i + 1; k < j; k++) {
+			struct vt_pair x = b->vt[k];
+			size_t m = k;
+
+			for (; m > i && b->vt[m - 1].t > x.t; m--)
+				b->vt[m] = b->vt[m - 1];
+			b->vt[m] = x;
+		}
+	}
+	for (i = 0; i < b->nee; i = j) {
+		for (j = i + 1; j < b->nee && b->ee[j].a == b->ee[i].a; j++)
+			;
+		for (k = i + 1; k < j; k++) {
+			struct ee_pair x = b->ee[k];
+			size_t m = k;
+
+			for (; m > i && b->ee[m - 1].b > x.b; m--)
+				b->ee[m] = b->ee[m - 1];
+			b->ee[m] = x;
+		}
+	}
+}
+
 /* Sorted and without repeats, so that the narrow phase's order, and with it
  * the run, does not depend on how the pairs were found. */
 static void
@@ -127,14 +163,15 @@ canonical(struct broad *b)
 	b->nee = k;
 }
 
+/* Not fmin and fmax: those are library calls, in the hot path. */
 static void
 box_add(double *bx, const double *p)
 {
 	int k;
 
 	for (k = 0; k < 3; k++) {
-		bx[k] = fmin(bx[k], p[k]);
-		bx[3 + k] = fmax(bx[3 + k], p[k]);
+		bx[k] = p[k] < bx[k] ? p[k] : bx[k];
+		bx[3 + k] = p[k] > bx[3 + k] ? p[k] : bx[3 + k];
 	}
 }
 
@@ -231,13 +268,56 @@ cube_range(const struct spatial_hash *h, const double *bx, int lo[3], int hi[3])
 	hash_cube_of(h, v3_load(bx + 3), hi);
 }
 
+/* Adds to bx where vertex v may be during the step. */
+static void
+vertex_box(double *bx, const struct geom *g, int v)
+{
+	if (g->vbox != NULL) {
+		box_add(bx, g->vbox + 6 * v);
+		box_add(bx, g->vbox + 6 * v + 3);
+	} else {
+		box_add(bx, g->x0 + 3 * v);
+		box_add(bx, g->x1 + 3 * v);
+	}
+}
+
+/* A fill of h with the boxes [first, first + count), each in every cube it
+ * overlaps. */
+static int
+fill_boxes(struct spatial_hash *h, const double *box, size_t first, size_t count, double cell,
+    const double *region)
+{
+	size_t i, total = 0;
+	int lo[3], hi[3], x, y, z;
+
+	if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), 1) != 0)
+		return -1;
+	for (i = first; i < first + count; i++) {
+		cube_range(h, box + 6 * i, lo, hi);
+		total += (size_t)(hi[0] - lo[0] + 1) * (size_t)(hi[1] - lo[1] + 1) *
+		    (size_t)(hi[2] - lo[2] + 1);
+	}
+	if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), total) != 0)
+		return -1;
+	for (i = first; i < first + count; i++) {
+		cube_range(h, box + 6 * i, lo, hi);
+		for (y = lo[1]; y <= hi[1]; y++)
+			for (z = lo[2]; z <= hi[2]; z++)
+				for (x = lo[0]; x <= hi[0]; x++)
+					if (hash_insert(h, hash_key(h, x, y, z), (int)i) != 0)
+						return -1;
+	}
+	return 0;
+}
+
 /*
  * grid: the chapter's hash holds triangles (and edges) instead of nodes,
  * each in every cube its swept box (step k to k+1) overlaps, and each
  * node's swept box is looked up in every cube it overlaps (Teschner et al.
  * 2003). Why it never misses: every narrow test, seed or ccd, can only
  * report a contact at a point that lies in both the node's swept box (its
- * path, and for seed the segments F_k -> D_k+1 from its neighbours) and the
+ * path for ccd; for seed also the segments F_k -> D_k+1 from its
+ * neighbours) and the
  * triangle's swept box. Two boxes that share a point share a cube, since
  * both were put in every cube they overlap, whatever the cube size; the
  * cube size only sets the cost. Edges the same way.
@@ -245,8 +325,8 @@ cube_range(const struct spatial_hash *h, const double *bx, int lo[3], int hi[3])
 static int
 find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, struct drape_err *err)
 {
-	struct spatial_hash *h = &b->hash;
-	size_t nbox = g->ntri + (want_ee ? g->nedges : 0), i, total;
+	struct spatial_hash *h = &b->hash, *he = &b->hash_edges;
+	size_t nbox = g->ntri + (want_ee ? g->nedges : 0), i;
 	double region[6], qb[6];
 	int lo[3], hi[3], x, y, z, v, k;
 
@@ -260,10 +340,8 @@ find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 		double *bx = b->box + 6 * i;
 
 		box_empty(bx);
-		for (k = 0; k < nn; k++) {
-			box_add(bx, g->x0 + 3 * n[k]);
-			box_add(bx, g->x1 + 3 * n[k]);
-		}
+		for (k = 0; k < nn; k++)
+			vertex_box(bx, g, n[k]);
 		box_add(region, bx);
 		box_add(region, bx + 3);
 		b->stamp[i] = -1;
@@ -276,32 +354,21 @@ find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 		if ((cell *= 2) > 1e300)
 			goto oom;
 	}
-	for (total = 0, i = 0; i < nbox; i++) {
-		cube_range(h, b->box + 6 * i, lo, hi);
-		total += (size_t)(hi[0] - lo[0] + 1) * (size_t)(hi[1] - lo[1] + 1) *
-		    (size_t)(hi[2] - lo[2] + 1);
-	}
-	if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), total) != 0)
-		goto oom;
 	b->st.cell = cell;
-	for (i = 0; i < nbox; i++) {
-		cube_range(h, b->box + 6 * i, lo, hi);
-		for (y = lo[1]; y <= hi[1]; y++)
-			for (z = lo[2]; z <= hi[2]; z++)
-				for (x = lo[0]; x <= hi[0]; x++)
-					if (hash_insert(h, hash_key(h, x, y, z), (int)i) != 0)
-						goto oom;
-	}
+	/* triangles and edges in hashes of their own, on the same cubes: a
+	 * node looks for triangles only, an edge for edges only */
+	if (fill_boxes(h, b->box, 0, g->ntri, cell, region) != 0 ||
+	    (want_ee && fill_boxes(&b->hash_edges, b->box, g->ntri, g->nedges, cell, region) != 0))
+		goto oom;
 
-	/* each node's swept box, widened to the segments from its
-	 * neighbours at step k that the seed test draws to it */
+	/* each node's swept box; for the seed narrow phase, widened to the
+	 * segments from its neighbours at step k that it draws to the node */
 	for (v = 0; v < g->nv; v++) {
 		if (v >= g->ncloth && !want_ee)
 			break;
 		box_empty(qb);
-		box_add(qb, g->x0 + 3 * v);
-		box_add(qb, g->x1 + 3 * v);
-		for (k = g->vedge_start[v]; k < g->vedge_start[v + 1]; k++) {
+		vertex_box(qb, g, v);
+		for (k = g->vedge_start[v]; !want_ee && k < g->vedge_start[v + 1]; k++) {
 			const int *en = g->edge + 2 * g->vedge[k];
 
 			box_add(qb, g->x0 + 3 * (en[0] == v ? en[1] : en[0]));
@@ -329,17 +396,17 @@ find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 	for (i = 0; want_ee && i < g->nedges; i++) {
 		const double *eb = b->box + 6 * (g->ntri + i);
 
-		cube_range(h, eb, lo, hi);
+		cube_range(he, eb, lo, hi);
 		for (y = lo[1]; y <= hi[1]; y++)
 			for (z = lo[2]; z <= hi[2]; z++)
 				for (x = lo[0]; x <= hi[0]; x++) {
-					const struct hash_cube *c = hash_find(h, hash_key(h, x, y, z));
+					const struct hash_cube *c = hash_find(he, hash_key(he, x, y, z));
 					int e;
 
-					for (e = c != NULL ? c->head : -1; e >= 0; e = h->next[e]) {
-						size_t it = (size_t)h->item[e], o = it - g->ntri;
+					for (e = c != NULL ? c->head : -1; e >= 0; e = he->next[e]) {
+						size_t it = (size_t)he->item[e], o = it - g->ntri;
 
-						if (it < g->ntri || o <= i || b->stamp[it] == (int)i)
+						if (o <= i || b->stamp[it] == (int)i)
 							continue;
 						b->stamp[it] = (int)i;
 						if (!ee_skip(g, (int)i, (int)o) &&
@@ -381,9 +448,10 @@ oom:
 }
 
 int
-broad_find(struct broad *b, const struct geom *g, double cell, bool want_ee,
+broad_find(struct broad *b, const struct geom *g, double cell, enum narrow_mode narrow,
     struct drape_err *err)
 {
+	bool want_ee = narrow == NARROW_CCD;
 	int rc;
 
 	b->nvt = b->nee = 0;
@@ -402,8 +470,10 @@ broad_find(struct broad *b, const struct geom *g, double cell, bool want_ee,
 	}
 	if (rc != 0)
 		return -1;
-	if (b->mode != BROAD_BRUTE)
+	if (b->mode == BROAD_SEED)
 		canonical(b);
+	else if (b->mode == BROAD_GRID)
+		sort_runs(b);	/* found vertex by vertex, each triangle once */
 	b->st.vt_pairs = (long)b->nvt;
 	b->st.ee_pairs = (long)b->nee;
 	return 0;

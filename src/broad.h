@@ -30,6 +30,11 @@ struct geom {
 	/* vertex -> triangles and vertex -> edges, as in struct cloth */
 	const int *vtri_start, *vtri, *vedge_start, *vedge;
 	const unsigned char *fixed;	/* 1: never moved by a contact */
+	/* Optional (NULL: the box of x0 and x1): per vertex, 6 doubles (lo,
+	 * hi), a box holding wherever the vertex may be during the step,
+	 * including after the corrections the caller may make. The pairs
+	 * found stay sound for any path inside these boxes. */
+	const double *vbox;
 };
 
 struct vt_pair {
@@ -49,7 +54,8 @@ struct broad_stats {
 
 struct broad {
 	enum broad_mode mode;
-	struct spatial_hash hash;
+	struct spatial_hash hash;	/* seed: nodes; grid: triangles */
+	struct spatial_hash hash_edges;	/* grid with ccd: edges */
 	struct vt_pair *vt;
 	size_t nvt, vtcap;
 	struct ee_pair *ee;
@@ -64,10 +70,11 @@ struct broad {
 void broad_init(struct broad *b, enum broad_mode mode);
 void broad_free(struct broad *b);
 
-/* Fills b->vt (and b->ee when want_ee), sorted by vertex (edge) then
- * triangle (edge), without duplicates. cell is L_ce. Returns 0, or -1 with
- * a message (out of memory, or a cell too small for the scene's extent). */
-int broad_find(struct broad *b, const struct geom *g, double cell, bool want_ee,
+/* Fills b->vt, and for the ccd narrow phase b->ee, sorted by vertex (edge)
+ * then triangle (edge), without duplicates: the pairs that narrow phase may
+ * find a contact in. cell is L_ce. Returns 0, or -1 with a message (out of
+ * memory, or a cell too small for the scene's extent). */
+int broad_find(struct broad *b, const struct geom *g, double cell, enum narrow_mode narrow,
     struct drape_err *err);
 
 #endif

@@ -123,8 +123,11 @@ build_geometry(struct collide *c, const struct cloth *cl, const unsigned char *h
 	if (incidence(c->tri, c->ntri, 3, c->nv, &c->vtri_start, &c->vtri) != 0 ||
 	    incidence(c->edge, c->nedges, 2, c->nv, &c->vedge_start, &c->vedge) != 0)
 		return -1;
+	for (k = c->ncloth; k < c->nv; k++)	/* obstacle vertices stay put */
+		for (t = 0; t < 6; t++)
+			c->box[6 * k + t] = c->x0[3 * k + t % 3];
 	c->g = (struct geom){ c->nv, c->ncloth, c->x0, c->x1, c->tri, c->ntri, c->edge,
-	    c->nedges, c->vtri_start, c->vtri, c->vedge_start, c->vedge, c->fixed };
+	    c->nedges, c->vtri_start, c->vtri, c->vedge_start, c->vedge, c->fixed, NULL };
 	return 0;
 }
 
@@ -217,8 +220,9 @@ friction_of(const struct collide *c, int obstacle)
 	return f;
 }
 
-/* Keeps a corrected position inside the node's swept box of this step, so
- * that the broad phase's pairs still cover it. */
+/* Keeps a corrected position inside the node's box of this step (its swept
+ * box, widened: see collide_step), so that the broad phase's pairs still
+ * cover it. */
 static vec3
 clamp_box(const struct collide *c, int v, vec3 p)
 {
@@ -435,7 +439,7 @@ static int
 ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, int pass)
 {
 	const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb, *tmp;
-	vec3 pa0, pa1, pb0, pb1, n, q, vq;
+	vec3 pa0, pa1, pb0, pb1, n, q, vq, sep;
 	double s, u;
 	int k, obstacle = -1;
 
@@ -452,11 +456,13 @@ ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, i
 	pb1 = lerp(X0(c, nb[1]), X1(c, nb[1]), toi);
 	segment_params(pa0, pa1, pb0, pb1, &s, &u);
 	q = lerp(pb0, pb1, u);
-	n = unit_or(v3_cross(v3_sub(pa1, pa0), v3_sub(pb1, pb0)),
-	    unit_or(v3_sub(lerp(pa0, pa1, s), q), v3(0, 1, 0)));
-	/* the normal points from edge b towards edge a at step k */
-	if (v3_dot(n, v3_sub(lerp(X0(c, na[0]), X0(c, na[1]), s),
-	    lerp(X0(c, nb[0]), X0(c, nb[1]), u))) < 0)
+	/* The normal: from edge b to edge a at step k, where the two were
+	 * apart. The cross product of the edges is no normal for nearly
+	 * parallel edges (two layers of cloth lying on each other), where it
+	 * points anywhere; it serves only when the step k points coincide. */
+	sep = v3_sub(lerp(X0(c, na[0]), X0(c, na[1]), s), lerp(X0(c, nb[0]), X0(c, nb[1]), u));
+	n = unit_or(sep, unit_or(v3_cross(v3_sub(pa1, pa0), v3_sub(pb1, pb0)), v3(0, 1, 0)));
+	if (v3_dot(n, sep) < 0)
 		n = v3_neg(n);
 	vq = lerp(V1(c, nb[0]), V1(c, nb[1]), u);
 	if (pass >= FAILSAFE_PASS)
@@ -624,15 +630,22 @@ collide_step(struct collide *c, long step, double dt, const double *y0, double *
 	c->v0 = y0 + n3;
 	memcpy(c->x1, y1, n3 * sizeof *c->x1);
 	memcpy(c->v1, y1 + n3, n3 * sizeof *c->v1);
-	for (v = 0; c->opt.narrow == NARROW_CCD && v < c->ncloth; v++) {	/* for clamp_box */
-		double *b = c->box + 6 * v;
+	/* ccd: where each node may go this step. An obstacle's correction moves
+	 * a node by at most |x1 - x0| from x1 (it starts outside, at x0), so
+	 * the swept box widened by that much holds every correction but the
+	 * rare one clamp_box cuts short, and the broad phase's pairs hold for
+	 * every path inside it. */
+	for (v = 0; c->opt.narrow == NARROW_CCD && v < c->ncloth; v++) {
+		double *b = c->box + 6 * v, pad;
 
+		pad = v3_len(v3_sub(X1(c, v), X0(c, v)));
 		for (k = 0; k < 3; k++) {
-			b[k] = fmin(c->x0[3 * v + k], c->x1[3 * v + k]);
-			b[3 + k] = fmax(c->x0[3 * v + k], c->x1[3 * v + k]);
+			b[k] = fmin(c->x0[3 * v + k], c->x1[3 * v + k]) - pad;
+			b[3 + k] = fmax(c->x0[3 * v + k], c->x1[3 * v + k]) + pad;
 		}
 	}
-	if (c->pairs && broad_find(&c->br, &c->g, c->cell, c->opt.narrow == NARROW_CCD, err) != 0)
+	c->g.vbox = c->opt.narrow == NARROW_CCD ? c->box : NULL;
+	if (c->pairs && broad_find(&c->br, &c->g, c->cell, c->opt.narrow, err) != 0)
 		return -1;
 	c->st.broad = c->br.st;
 	if (c->opt.narrow == NARROW_SEED) {

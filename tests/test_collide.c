@@ -182,7 +182,7 @@ grid_covers_brute(const char *name, int gap)
 	struct scene sc;
 	struct stepper st;
 	struct blowup bl;
-	struct broad grid, brute;
+	struct broad grid, grid_seed, brute;
 	struct drape_err err;
 	struct geom g;
 	double *x0, *x1;
@@ -204,6 +204,7 @@ grid_covers_brute(const char *name, int gap)
 	g.x0 = x0;
 	g.x1 = x1;
 	broad_init(&grid, BROAD_GRID);
+	broad_init(&grid_seed, BROAD_GRID);
 	broad_init(&brute, BROAD_BRUTE);
 	for (round = 0; !stepper_done(&st); round++) {
 		size_t k;
@@ -216,8 +217,9 @@ grid_covers_brute(const char *name, int gap)
 		memcpy(x1, stepper_x(&st), 3 * (size_t)st.cl.n * sizeof *x1);
 		if (round % 4 != 0)
 			continue;
-		if (broad_find(&grid, &g, st.col.cell, true, &err) != 0 ||
-		    broad_find(&brute, &g, 0, true, &err) != 0)
+		if (broad_find(&grid, &g, st.col.cell, NARROW_CCD, &err) != 0 ||
+		    broad_find(&grid_seed, &g, st.col.cell, NARROW_SEED, &err) != 0 ||
+		    broad_find(&brute, &g, 0, NARROW_CCD, &err) != 0)
 			fail_msg("%s", err.msg);
 		for (k = 0; k < brute.nvt; k++) {
 			int v = brute.vt[k].v, t = brute.vt[k].t, j, e;
@@ -232,7 +234,12 @@ grid_covers_brute(const char *name, int gap)
 				p0[j + 1] = v3_load(x0 + 3 * tn[j]);
 				p1[j + 1] = v3_load(x1 + 3 * tn[j]);
 			}
-			hit = ccd_vertex_face(p0, p1, 0, NULL);
+			if (ccd_vertex_face(p0, p1, 0, NULL)) {
+				hits++;
+				if (!has_vt(&grid, v, t))
+					fail_msg("%s: grid misses node %d against triangle %d", name,
+					    v, t);
+			}
 			for (e = g.vedge_start[v] - 1; !hit && e < g.vedge_start[v + 1]; e++) {
 				int f = v;
 
@@ -249,8 +256,9 @@ grid_covers_brute(const char *name, int gap)
 			if (!hit)
 				continue;
 			hits++;
-			if (!has_vt(&grid, v, t))
-				fail_msg("%s: grid misses node %d against triangle %d", name, v, t);
+			if (!has_vt(&grid_seed, v, t))
+				fail_msg("%s: grid (seed) misses node %d against triangle %d", name,
+				    v, t);
 		}
 		for (k = 0; k < brute.nee; k++) {
 			const int *a = g.edge + 2 * brute.ee[k].a, *b = g.edge + 2 * brute.ee[k].b;
@@ -272,6 +280,7 @@ grid_covers_brute(const char *name, int gap)
 	    "steps\n", name, hits, checked, gap);
 	assert_true(hits > 0);
 	broad_free(&grid);
+	broad_free(&grid_seed);
 	broad_free(&brute);
 	free(x0);
 	free(x1);

@@ -7,7 +7,7 @@
 #include "ccd.h"
 #include "collide.h"
 
-#define FAILSAFE_PASS 2		/* ccd: from this pass on, a hit node goes back to step k */
+#define FAILSAFE_PASS 5		/* ccd: from this pass on, a hit node goes back to step k */
 
 static void *
 xcalloc(size_t n, size_t size)
@@ -73,6 +73,7 @@ build_geometry(struct collide *c, const struct cloth *cl, const unsigned char *h
 	    (c->edge = xcalloc(2 * ne, sizeof *c->edge)) == NULL ||
 	    (c->tri_obstacle = xcalloc(nt, sizeof *c->tri_obstacle)) == NULL ||
 	    (c->fixed = xcalloc((size_t)nv, 1)) == NULL ||
+	    (c->inv_mass = xcalloc((size_t)nv, sizeof *c->inv_mass)) == NULL ||
 	    (c->changed = xcalloc((size_t)nv, 1)) == NULL ||
 	    (c->changed_next = xcalloc((size_t)nv, 1)) == NULL ||
 	    (c->frozen = xcalloc((size_t)nv, 1)) == NULL ||
@@ -82,8 +83,10 @@ build_geometry(struct collide *c, const struct cloth *cl, const unsigned char *h
 	memcpy(c->edge, cl->edge, 2 * cl->nedges * sizeof *c->edge);
 	for (t = 0; t < cl->ntri; t++)
 		c->tri_obstacle[t] = -1;
-	for (k = 0; k < cl->n; k++)
+	for (k = 0; k < cl->n; k++) {
 		c->fixed[k] = held != NULL && held[k];
+		c->inv_mass[k] = c->fixed[k] || !(cl->mass[k] > 0) ? 0 : 1 / cl->mass[k];
+	}
 	c->ntri = cl->ntri;
 	c->nedges = cl->nedges;
 	nv = cl->n;
@@ -176,6 +179,7 @@ collide_free(struct collide *c)
 	free(c->vedge);
 	free(c->tri_obstacle);
 	free(c->fixed);
+	free(c->inv_mass);
 	free(c->changed);
 	free(c->changed_next);
 	free(c->frozen);
@@ -368,55 +372,151 @@ unit_or(vec3 a, vec3 fallback)
 	return l > 0 && isfinite(l) ? v3_scale(a, 1 / l) : fallback;
 }
 
+/*
+ * ccd: the response to a contact between two pieces of the network, or the
+ * network and a mesh. The chapter's response (eq. 11-17) corrects the node
+ * alone, as if the triangle were much heavier (M >> m); between two layers
+ * of the same cloth the masses are alike, and a node made to follow a
+ * triangle that does not feel it in turn keeps a pile of layers chattering.
+ * So here the inelastic impulse is shared by mass between both sides and
+ * conserves momentum (an obstacle's vertices have no inverse mass: against
+ * a mesh it is the chapter's response, with Q's velocity interpolated from
+ * the vertices instead of eq. 15's rigid frame).
+ *
+ * The contact is given by its points: vert[k] with weight w[k], positive on
+ * one side (the node, edge a), negative on the other (the triangle, edge
+ * b), so that sum w[k] x[k] is the separation and n points from the
+ * negative side to the positive one at step k. Along n the relative
+ * velocity is made -e times what it was (e = 0: eq. 12), and Coulomb and
+ * viscous friction act on the relative sliding velocity. The positions
+ * follow the scene's policy: keep puts the vertices back at step k (the
+ * chapter's choice), q at the contact (toi, where the two touch), and slide
+ * restores step k's gap along n, each side moving as its mass says, and
+ * leaves the sliding motion alone (keeping the whole position locks
+ * sliding surfaces, as the chapter notes).
+ */
+static int
+contact_impulse(struct collide *c, long step, double dt, double toi, int nvert, const int *vert,
+    const double *w, vec3 n, double g0, enum contact_type type, int other, int obstacle, vec3 q)
+{
+	struct friction fr = friction_of(c, obstacle);
+	double den = 0, g1 = 0, vr, j, vn_before[4];
+	vec3 rel = v3(0, 0, 0), vt;
+	int k;
+
+	for (k = 0; k < nvert; k++) {
+		den += w[k] * w[k] * c->inv_mass[vert[k]];
+		rel = v3_madd(rel, V1(c, vert[k]), w[k]);
+		g1 += w[k] * v3_dot(X1(c, vert[k]), n);
+		vn_before[k] = v3_dot(V1(c, vert[k]), n);
+	}
+	if (!(den > 0))
+		return 0;	/* nothing here can move */
+	g1 -= g0 > 0 ? g0 : 0;	/* < 0: closer than at step k, or crossed */
+	vr = v3_dot(rel, n);
+	j = vr < 0 ? -(1 + c->opt.restitution) * vr / den : 0;
+	vt = v3_madd(rel, n, -vr);
+	for (k = 0; k < nvert; k++) {
+		int v = vert[k];
+		double im = c->inv_mass[v];
+
+		if (im == 0)
+			continue;
+		v3_store(c->v1 + 3 * v, v3_madd(V1(c, v), n, w[k] * im * j));
+	}
+	if (v3_len(vt) > 0 && (fr.mu > 0 || fr.viscous > 0)) {
+		double st = v3_len(vt), keep = 1;
+		vec3 u = v3_scale(vt, 1 / st);
+
+		if (fr.mu > 0)
+			keep = fmax(0, 1 - fr.mu * j / (st / den));
+		if (fr.viscous > 0)
+			keep *= exp(-fr.viscous * dt);
+		for (k = 0; k < nvert; k++) {
+			double im = c->inv_mass[vert[k]];
+
+			if (im > 0)
+				v3_store(c->v1 + 3 * vert[k], v3_madd(V1(c, vert[k]), u,
+				    -w[k] * im * (1 - keep) * st / den));
+		}
+	}
+	for (k = 0; k < nvert; k++) {
+		int v = vert[k];
+		double im = c->inv_mass[v];
+
+		if (im == 0)
+			continue;
+		if (c->opt.position == POSITION_KEEP)
+			v3_store(c->x1 + 3 * v, X0(c, v));
+		else if (c->opt.position == POSITION_Q)
+			v3_store(c->x1 + 3 * v, lerp(X0(c, v), X1(c, v), toi));
+		else if (g1 < 0)
+			v3_store(c->x1 + 3 * v, clamp_box(c, v, v3_madd(X1(c, v), n,
+			    -w[k] * im * g1 / den)));
+		c->changed_next[v] = 1;
+		if (add_event(c, step, v, type, other, obstacle, q, w[k] > 0 ? n : v3_neg(n),
+		    w[k] > 0 ? vn_before[k] : -vn_before[k],
+		    w[k] > 0 ? v3_dot(V1(c, v), n) : -v3_dot(V1(c, v), n)) != 0)
+			return -1;
+	}
+	return 0;
+}
+
+/* Barycentric coordinates of p's projection on triangle abc, clamped to
+ * the triangle (a conservative test may report a point just outside). */
+static void
+barycentric(vec3 p, vec3 a, vec3 b, vec3 cc, double bw[3])
+{
+	vec3 e0 = v3_sub(b, a), e1 = v3_sub(cc, a), d = v3_sub(p, a);
+	double d00 = v3_dot(e0, e0), d01 = v3_dot(e0, e1), d11 = v3_dot(e1, e1);
+	double d20 = v3_dot(d, e0), d21 = v3_dot(d, e1), den = d00 * d11 - d01 * d01, sum;
+	int k;
+
+	if (!(den > 0)) {
+		bw[0] = bw[1] = bw[2] = 1.0 / 3;
+		return;
+	}
+	bw[1] = (d11 * d20 - d01 * d21) / den;
+	bw[2] = (d00 * d21 - d01 * d20) / den;
+	bw[0] = 1 - bw[1] - bw[2];
+	for (k = 0, sum = 0; k < 3; k++)
+		sum += bw[k] = fmax(bw[k], 0);
+	for (k = 0; k < 3; k++)
+		bw[k] = sum > 0 ? bw[k] / sum : 1.0 / 3;
+}
+
 static int
 ccd_vertex_triangle(struct collide *c, long step, double dt, int v, int t, double toi, int pass)
 {
 	const int *tn = c->tri + 3 * t;
 	vec3 p = lerp(X0(c, v), X1(c, v), toi), a = lerp(X0(c, tn[0]), X1(c, tn[0]), toi);
 	vec3 b = lerp(X0(c, tn[1]), X1(c, tn[1]), toi), cc = lerp(X0(c, tn[2]), X1(c, tn[2]), toi);
-	vec3 n = v3_cross(v3_sub(b, a), v3_sub(cc, a)), q, vq;
-	int obstacle = c->tri_obstacle[t], k;
+	vec3 n = v3_cross(v3_sub(b, a), v3_sub(cc, a)), q, sep0 = X0(c, v);
+	double bw[3], w[4], g0;
+	int vert[4] = { v, tn[0], tn[1], tn[2] }, k;
 
-	n = unit_or(n, unit_or(v3_sub(X0(c, v), X0(c, tn[0])), v3(0, 1, 0)));
-	q = v3_madd(p, n, -v3_dot(v3_sub(p, a), n));
-	vq = response_point_velocity(a, b, cc, V1(c, tn[0]), V1(c, tn[1]), V1(c, tn[2]), q);
-	if (pass >= FAILSAFE_PASS) {
-		freeze(c, v);
-		for (k = 0; k < 3; k++)
-			freeze(c, tn[k]);
-	}
-	if (v < c->ncloth && !c->fixed[v]) {
-		if (pass >= FAILSAFE_PASS) {
-			struct friction fr = friction_of(c, obstacle);
-			vec3 vd = V1(c, v), vn = response_node_velocity(vd, n, vq,
-			    c->opt.restitution, &fr, dt);
-
-			v3_store(c->v1 + 3 * v, vn);
-			return add_event(c, step, v, CONTACT_NODE_FACE, t, obstacle, q, n,
-			    v3_dot(vd, n), v3_dot(vn, n));
-		}
-		return correct_node(c, step, dt, v, CONTACT_NODE_FACE, t, obstacle, q, n, vq, true);
-	}
-	/* the vertex cannot move (held, or an obstacle's): the triangle's
-	 * nodes take its normal velocity */
+	barycentric(p, a, b, cc, bw);
+	w[0] = 1;
 	for (k = 0; k < 3; k++) {
-		int w = tn[k];
-		vec3 vd = V1(c, w), vn;
-
-		if (w >= c->ncloth || c->fixed[w])
-			continue;
-		vn = response_node_velocity(vd, n, V1(c, v), c->opt.restitution, NULL, dt);
-		v3_store(c->v1 + 3 * w, vn);
-		if (pass < FAILSAFE_PASS) {
-			v3_store(c->x1 + 3 * w, clamp_box(c, w, place(c, w, X1(c, w), n,
-			    v3_dot(V1(c, v), n) * dt)));
-			c->changed_next[w] = 1;
-		}
-		if (add_event(c, step, w, CONTACT_NODE_FACE, t, obstacle, p, n, v3_dot(vd, n),
-		    v3_dot(vn, n)) != 0)
-			return -1;
+		w[k + 1] = -bw[k];
+		sep0 = v3_madd(sep0, X0(c, tn[k]), -bw[k]);
 	}
-	return 0;
+	n = unit_or(n, unit_or(sep0, v3(0, 1, 0)));
+	/* n towards the node's side at step k; with no side then, against
+	 * the relative motion */
+	g0 = v3_dot(sep0, n);
+	if (g0 < 0 || (g0 == 0 && v3_dot(v3_sub(v3_sub(X1(c, v), X0(c, v)),
+	    v3_sub(lerp(X1(c, tn[0]), X1(c, tn[1]), 0.5), lerp(X0(c, tn[0]), X0(c, tn[1]), 0.5))),
+	    n) > 0)) {
+		n = v3_neg(n);
+		g0 = -g0;
+	}
+	q = v3_madd(p, n, -v3_dot(v3_sub(p, a), n));
+	if (pass >= FAILSAFE_PASS)
+		for (k = 0; k < 4; k++)
+			freeze(c, vert[k]);
+	return contact_impulse(c, step, dt, toi, 4, vert, w, n, g0, CONTACT_NODE_FACE, t,
+	    c->tri_obstacle[t], q);
 }
 
 /* Closest points of segments p0-p1 and q0-q1: parameters s and u. */
@@ -438,18 +538,15 @@ segment_params(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
 static int
 ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, int pass)
 {
-	const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb, *tmp;
-	vec3 pa0, pa1, pb0, pb1, n, q, vq, sep;
-	double s, u;
-	int k, obstacle = -1;
+	const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb;
+	vec3 pa0, pa1, pb0, pb1, n, q, sep;
+	double s, u, w[4];
+	int vert[4] = { na[0], na[1], nb[0], nb[1] }, k, obstacle = -1;
 
-	/* the nodes of the first edge that can move are corrected */
-	if ((na[0] >= c->ncloth || c->fixed[na[0]]) && (na[1] >= c->ncloth || c->fixed[na[1]])) {
-		tmp = na, na = nb, nb = tmp;
-		k = ea, ea = eb, eb = k;
-	}
 	if (nb[0] >= c->ncloth)	/* an obstacle's edge: its vertex's first triangle says which */
 		obstacle = c->tri_obstacle[c->vtri[c->vtri_start[nb[0]]]];
+	else if (na[0] >= c->ncloth)
+		obstacle = c->tri_obstacle[c->vtri[c->vtri_start[na[0]]]];
 	pa0 = lerp(X0(c, na[0]), X1(c, na[0]), toi);
 	pa1 = lerp(X0(c, na[1]), X1(c, na[1]), toi);
 	pb0 = lerp(X0(c, nb[0]), X1(c, nb[0]), toi);
@@ -464,31 +561,15 @@ ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, i
 	n = unit_or(sep, unit_or(v3_cross(v3_sub(pa1, pa0), v3_sub(pb1, pb0)), v3(0, 1, 0)));
 	if (v3_dot(n, sep) < 0)
 		n = v3_neg(n);
-	vq = lerp(V1(c, nb[0]), V1(c, nb[1]), u);
+	w[0] = 1 - s;
+	w[1] = s;
+	w[2] = -(1 - u);
+	w[3] = -u;
 	if (pass >= FAILSAFE_PASS)
-		for (k = 0; k < 2; k++) {
-			freeze(c, na[k]);
-			freeze(c, nb[k]);
-		}
-	for (k = 0; k < 2; k++) {
-		int w = na[k];
-
-		if (w >= c->ncloth || c->fixed[w])
-			continue;
-		if (pass >= FAILSAFE_PASS) {
-			struct friction fr = friction_of(c, obstacle);
-			vec3 vd = V1(c, w), vn = response_node_velocity(vd, n, vq,
-			    c->opt.restitution, &fr, dt);
-
-			v3_store(c->v1 + 3 * w, vn);
-			if (add_event(c, step, w, CONTACT_EDGE_EDGE, eb, obstacle, q, n,
-			    v3_dot(vd, n), v3_dot(vn, n)) != 0)
-				return -1;
-		} else if (correct_node(c, step, dt, w, CONTACT_EDGE_EDGE, eb, obstacle, q, n, vq,
-		    true) != 0)
-			return -1;
-	}
-	return 0;
+		for (k = 0; k < 4; k++)
+			freeze(c, vert[k]);
+	return contact_impulse(c, step, dt, toi, 4, vert, w, n, v3_dot(sep, n), CONTACT_EDGE_EDGE, eb,
+	    obstacle, q);
 }
 
 /* Analytic obstacles for node v; returns 1 if one corrected it. The
@@ -620,6 +701,7 @@ collide_step(struct collide *c, long step, double dt, const double *y0, double *
     struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)c->ncloth, k;
+	double pad = 0;
 	int v;
 
 	c->nev = 0;
@@ -630,15 +712,17 @@ collide_step(struct collide *c, long step, double dt, const double *y0, double *
 	c->v0 = y0 + n3;
 	memcpy(c->x1, y1, n3 * sizeof *c->x1);
 	memcpy(c->v1, y1 + n3, n3 * sizeof *c->v1);
-	/* ccd: where each node may go this step. An obstacle's correction moves
-	 * a node by at most |x1 - x0| from x1 (it starts outside, at x0), so
-	 * the swept box widened by that much holds every correction but the
-	 * rare one clamp_box cuts short, and the broad phase's pairs hold for
-	 * every path inside it. */
+	/* ccd: where each node may go this step. A correction moves a node by
+	 * at most the relative motion of the two sides, so the swept box
+	 * widened by twice the step's largest motion holds every correction
+	 * but the rare one clamp_box cuts short, and the broad phase's pairs
+	 * hold for every path inside it. */
+	for (v = 0; c->opt.narrow == NARROW_CCD && v < c->ncloth; v++)
+		pad = fmax(pad, v3_len(v3_sub(X1(c, v), X0(c, v))));
+	pad *= 2;
 	for (v = 0; c->opt.narrow == NARROW_CCD && v < c->ncloth; v++) {
-		double *b = c->box + 6 * v, pad;
+		double *b = c->box + 6 * v;
 
-		pad = v3_len(v3_sub(X1(c, v), X0(c, v)));
 		for (k = 0; k < 3; k++) {
 			b[k] = fmin(c->x0[3 * v + k], c->x1[3 * v + k]) - pad;
 			b[3 + k] = fmax(c->x0[3 * v + k], c->x1[3 * v + k]) + pad;

@@ -62,6 +62,7 @@ struct collide {
 	int *vtri_start, *vtri, *vedge_start, *vedge;
 	int *tri_obstacle;	/* per triangle: its obstacle, or -1 */
 	unsigned char *fixed;	/* held nodes and obstacle vertices */
+	double *inv_mass;	/* 1/m, 0 for what contacts cannot move */
 	struct geom g;
 	struct broad br;
 

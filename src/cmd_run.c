@@ -43,8 +43,13 @@ summary(const struct stepper *st, double wall)
 
 	stepper_energy(st, &e);
 	printf("scene        %s (%s)\n", sc->name, sc->path);
-	printf("network      %d x %d nodes, %zu springs, %zu shear corners, %zu bending hinges, "
-	    "%zu triangles\n", cl->nu, cl->nv, cl->nsprings, cl->ncorners, cl->nhinges, cl->ntri);
+	if (cl->shape == SHAPE_SQUARE)
+		printf("network      %d x %d nodes", cl->nu, cl->nv);
+	else
+		printf("network      %s of %d nodes in a %d x %d grid", cloth_shape_name[cl->shape],
+		    cl->n, cl->nu, cl->nv);
+	printf(", %zu springs, %zu shear corners, %zu bending hinges, %zu triangles\n",
+	    cl->nsprings, cl->ncorners, cl->nhinges, cl->ntri);
 	for (d = 0; d < 2; d++)
 		printf("bending %s %.4g N*m (%s)\n", dir[d], sc->mat.bending[d],
 		    sc->mat.bending_derived[d] ? "derived: modulus*thickness^3/12" : "given");

@@ -199,7 +199,7 @@ selectors_on_a_disc(void **state)
 static void
 every_shipped_scene_parses(void **state)
 {
-	static const char *names[] = { "cantilever", "hanging", "free-fall" };
+	static const char *names[] = { "cantilever", "hanging", "free-fall", "drape" };
 	size_t i;
 
 	(void)state;

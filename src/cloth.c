@@ -35,8 +35,9 @@ square_at(const struct cloth *cl, const unsigned char *sq, int i, int j)
 	return i >= 0 && j >= 0 && i + 1 < cl->nu && j + 1 < cl->nv && sq[j * (cl->nu - 1) + i];
 }
 
-/* A square cloth keeps tributary() so that a cloth one node wide still
- * counts as h/2 wide; for one of two nodes or more both rules agree. */
+/* A square cloth keeps tributary(), so that a cloth one node wide still
+ * counts as h/2 wide; on a cloth two nodes wide or more both rules agree,
+ * bit for bit. */
 static double
 warp_width(const struct cloth *cl, const unsigned char *sq, int i, int j)
 {

@@ -19,34 +19,148 @@ tributary(int k, int n, double h)
 	return k == 0 || k == n - 1 ? h / 2 : h;
 }
 
+/*
+ * The shape is a set of whole squares: a disc keeps the squares whose four
+ * corners lie in the circle inscribed in the grid, and its nodes are the
+ * corners of those squares. Keeping squares rather than nodes gives every
+ * node a mass (the squares around it) and every node a triangle (what
+ * collisions need); a node inside the circle whose squares all poke out
+ * would have neither. The widths and areas below then come from the squares
+ * present, so a spring, hinge or node of the disc's rim stands for the
+ * cloth on its inner side only, as one of a square cloth's border does.
+ */
 static int
-build_elements(struct cloth *cl, const struct scene *sc)
+square_at(const struct cloth *cl, const unsigned char *sq, int i, int j)
+{
+	return i >= 0 && j >= 0 && i + 1 < cl->nu && j + 1 < cl->nv && sq[j * (cl->nu - 1) + i];
+}
+
+/* A square cloth keeps tributary(), so that a cloth one node wide still
+ * counts as h/2 wide; on a cloth two nodes wide or more both rules agree,
+ * bit for bit. */
+static double
+warp_width(const struct cloth *cl, const unsigned char *sq, int i, int j)
+{
+	if (cl->shape == SHAPE_SQUARE)
+		return tributary(j, cl->nv, cl->h);
+	return cl->h / 2 * (square_at(cl, sq, i, j - 1) + square_at(cl, sq, i, j));
+}
+
+static double
+weft_width(const struct cloth *cl, const unsigned char *sq, int i, int j)
+{
+	if (cl->shape == SHAPE_SQUARE)
+		return tributary(i, cl->nu, cl->h);
+	return cl->h / 2 * (square_at(cl, sq, i - 1, j) + square_at(cl, sq, i, j));
+}
+
+/* A node's mass: the weight of a quarter of each square around it. */
+static double
+node_mass(const struct cloth *cl, const unsigned char *sq, double weight, int i, int j)
+{
+	double h = cl->h;
+
+	if (cl->shape == SHAPE_SQUARE)
+		return weight * tributary(i, cl->nu, h) * tributary(j, cl->nv, h);
+	return weight * (h / 2) * (h / 2) * (square_at(cl, sq, i - 1, j - 1) +
+	    square_at(cl, sq, i, j - 1) + square_at(cl, sq, i - 1, j) + square_at(cl, sq, i, j));
+}
+
+/* Grid position (i, j) lies in the circle inscribed in the grid. In half
+ * spacings from the centre, so that the test is exact integer arithmetic. */
+static int
+in_disc(const struct cloth *cl, int i, int j)
+{
+	long di = 2L * i - (cl->nu - 1), dj = 2L * j - (cl->nv - 1), r = cl->nu - 1;
+
+	return di * di + dj * dj <= r * r;
+}
+
+/* The squares that are cloth (sq, (nu-1)*(nv-1) flags), then the nodes
+ * that are, numbered densely in grid order. */
+static int
+build_shape(struct cloth *cl, unsigned char **sqp)
+{
+	int nu = cl->nu, nv = cl->nv, i, j, p;
+	size_t nsq = (size_t)(nu > 1 ? nu - 1 : 0) * (size_t)(nv > 1 ? nv - 1 : 0);
+	unsigned char *sq = malloc(nsq + 1);
+
+	*sqp = sq;
+	cl->grid_node = malloc((size_t)nu * nv * sizeof *cl->grid_node);
+	if (sq == NULL || cl->grid_node == NULL)
+		return -1;
+	cl->nsquares = 0;
+	for (j = 0; j + 1 < nv; j++)
+		for (i = 0; i + 1 < nu; i++) {
+			int k = j * (nu - 1) + i;
+
+			sq[k] = cl->shape == SHAPE_SQUARE || (in_disc(cl, i, j) &&
+			    in_disc(cl, i + 1, j) && in_disc(cl, i, j + 1) &&
+			    in_disc(cl, i + 1, j + 1));
+			cl->nsquares += sq[k];
+		}
+	for (j = 0, p = 0; j < nv; j++)
+		for (i = 0; i < nu; i++) {
+			int keep = cl->shape == SHAPE_SQUARE || square_at(cl, sq, i - 1, j - 1) ||
+			    square_at(cl, sq, i, j - 1) || square_at(cl, sq, i - 1, j) ||
+			    square_at(cl, sq, i, j);
+
+			cl->grid_node[j * nu + i] = keep ? p++ : -1;
+		}
+	cl->n = p;
+	cl->node_grid = malloc((size_t)cl->n * sizeof *cl->node_grid + 1);
+	if (cl->node_grid == NULL)
+		return -1;
+	for (p = 0; p < nu * nv; p++)
+		if (cl->grid_node[p] >= 0)
+			cl->node_grid[cl->grid_node[p]] = p;
+	return 0;
+}
+
+/* The node at (i, j), or -1 off the grid or off the shape. */
+static int
+node_at(const struct cloth *cl, int i, int j)
+{
+	return i >= 0 && j >= 0 && i < cl->nu && j < cl->nv ? cloth_node(cl, i, j) : -1;
+}
+
+static int
+build_elements(struct cloth *cl, const struct scene *sc, const unsigned char *sq)
 {
 	const struct material *m = &sc->mat;
 	int nu = cl->nu, nv = cl->nv, i, j;
 	double h = cl->h;
-	size_t ns = 0, nc = 0, nh = 0;
+	size_t ns = 0, nc = 0, nh = 0, grid = (size_t)nu * nv;
 
-	cl->springs = malloc(((size_t)(nu - 1) * nv + (size_t)nu * (nv - 1)) * sizeof *cl->springs);
+	/* Sized for the whole grid; a shape uses part of it. */
+	cl->springs = malloc(2 * grid * sizeof *cl->springs);
 	if (cl->springs == NULL)
 		return -1;
 	for (j = 0; j < nv; j++)
-		for (i = 0; i + 1 < nu; i++)
-			cl->springs[ns++] = (struct spring){ cloth_node(cl, i, j),
-			    cloth_node(cl, i + 1, j), m->modulus[0] * m->thickness *
-			    tributary(j, nv, h) / h, h };
+		for (i = 0; i + 1 < nu; i++) {
+			int a = node_at(cl, i, j), b = node_at(cl, i + 1, j);
+			double w = warp_width(cl, sq, i, j);
+
+			if (a >= 0 && b >= 0 && w > 0)
+				cl->springs[ns++] = (struct spring){ a, b,
+				    m->modulus[0] * m->thickness * w / h, h };
+		}
 	for (j = 0; j + 1 < nv; j++)
-		for (i = 0; i < nu; i++)
-			cl->springs[ns++] = (struct spring){ cloth_node(cl, i, j),
-			    cloth_node(cl, i, j + 1), m->modulus[1] * m->thickness *
-			    tributary(i, nu, h) / h, h };
+		for (i = 0; i < nu; i++) {
+			int a = node_at(cl, i, j), b = node_at(cl, i, j + 1);
+			double w = weft_width(cl, sq, i, j);
+
+			if (a >= 0 && b >= 0 && w > 0)
+				cl->springs[ns++] = (struct spring){ a, b,
+				    m->modulus[1] * m->thickness * w / h, h };
+		}
 	cl->nsprings = ns;
 
 	/* Nothing is built for a material property that is zero. */
 	if (m->shear_modulus > 0) {
 		double k = m->shear_modulus * m->thickness * h * h / 4;
 
-		cl->corners = malloc((size_t)4 * (nu - 1) * (nv - 1) * sizeof *cl->corners);
+		cl->corners = malloc(4 * grid * sizeof *cl->corners);
 		if (cl->corners == NULL)
 			return -1;
 		for (j = 0; j + 1 < nv; j++)
@@ -54,6 +168,8 @@ build_elements(struct cloth *cl, const struct scene *sc)
 				int p00 = cloth_node(cl, i, j), p10 = cloth_node(cl, i + 1, j);
 				int p01 = cloth_node(cl, i, j + 1), p11 = cloth_node(cl, i + 1, j + 1);
 
+				if (!square_at(cl, sq, i, j))
+					continue;
 				cl->corners[nc++] = (struct corner){ p00, p10, p01, k };
 				cl->corners[nc++] = (struct corner){ p10, p00, p11, k };
 				cl->corners[nc++] = (struct corner){ p11, p01, p10, k };
@@ -62,23 +178,35 @@ build_elements(struct cloth *cl, const struct scene *sc)
 	}
 	cl->ncorners = nc;
 
+	/* A hinge needs both its segments, and bends the width they stand for. */
 	if (m->bending[0] > 0 || m->bending[1] > 0) {
-		cl->hinges = malloc(((size_t)(nu - 2) * nv + (size_t)nu * (nv - 2) + 1) *
-		    sizeof *cl->hinges);
+		cl->hinges = malloc((2 * grid + 1) * sizeof *cl->hinges);
 		if (cl->hinges == NULL)
 			return -1;
 		if (m->bending[0] > 0)
 			for (j = 0; j < nv; j++)
-				for (i = 1; i + 1 < nu; i++)
-					cl->hinges[nh++] = (struct hinge){ cloth_node(cl, i - 1, j),
-					    cloth_node(cl, i, j), cloth_node(cl, i + 1, j),
-					    m->bending[0] * tributary(j, nv, h) / h };
+				for (i = 1; i + 1 < nu; i++) {
+					int a = node_at(cl, i - 1, j), b = node_at(cl, i, j);
+					int c = node_at(cl, i + 1, j);
+					double w1 = warp_width(cl, sq, i - 1, j);
+					double w2 = warp_width(cl, sq, i, j);
+
+					if (a >= 0 && b >= 0 && c >= 0 && w1 > 0 && w2 > 0)
+						cl->hinges[nh++] = (struct hinge){ a, b, c,
+						    m->bending[0] * ((w1 + w2) / 2) / h };
+				}
 		if (m->bending[1] > 0)
 			for (i = 0; i < nu; i++)
-				for (j = 1; j + 1 < nv; j++)
-					cl->hinges[nh++] = (struct hinge){ cloth_node(cl, i, j - 1),
-					    cloth_node(cl, i, j), cloth_node(cl, i, j + 1),
-					    m->bending[1] * tributary(i, nu, h) / h };
+				for (j = 1; j + 1 < nv; j++) {
+					int a = node_at(cl, i, j - 1), b = node_at(cl, i, j);
+					int c = node_at(cl, i, j + 1);
+					double w1 = weft_width(cl, sq, i, j - 1);
+					double w2 = weft_width(cl, sq, i, j);
+
+					if (a >= 0 && b >= 0 && c >= 0 && w1 > 0 && w2 > 0)
+						cl->hinges[nh++] = (struct hinge){ a, b, c,
+						    m->bending[1] * ((w1 + w2) / 2) / h };
+				}
 	}
 	cl->nhinges = nh;
 	return 0;
@@ -118,15 +246,14 @@ build_adjacency(int n, const int *items, size_t nitems, int per, int **startp, i
 }
 
 static int
-build_triangles(struct cloth *cl)
+build_triangles(struct cloth *cl, const unsigned char *sq)
 {
 	int nu = cl->nu, nv = cl->nv, i, j;
-	size_t nt = 0, ne = 0;
+	size_t nt = 0, ne = 0, grid = (size_t)nu * nv;
 
-	cl->ntri = (size_t)2 * (nu - 1) * (nv - 1);
-	cl->nedges = (size_t)(nu - 1) * nv + (size_t)nu * (nv - 1) + (size_t)(nu - 1) * (nv - 1);
-	cl->tri = malloc(3 * cl->ntri * sizeof *cl->tri);
-	cl->edge = malloc(2 * cl->nedges * sizeof *cl->edge);
+	/* Sized for the whole grid; a shape uses part of it. */
+	cl->tri = malloc(3 * 2 * grid * sizeof *cl->tri);
+	cl->edge = malloc(2 * 3 * grid * sizeof *cl->edge);
 	if (cl->tri == NULL || cl->edge == NULL)
 		return -1;
 
@@ -136,6 +263,8 @@ build_triangles(struct cloth *cl)
 			int c = cloth_node(cl, i + 1, j + 1), d = cloth_node(cl, i, j + 1);
 			int t[6], k;
 
+			if (!square_at(cl, sq, i, j))
+				continue;
 			/* Diagonals alternate like a chequerboard, so that the mesh
 			 * has no preferred diagonal direction. */
 			if ((i + j) % 2 == 0) {
@@ -153,14 +282,22 @@ build_triangles(struct cloth *cl)
 				cl->tri[3 * nt + (size_t)k] = t[k];
 			nt += 2;
 		}
+	/* The yarn segments: those of the springs (a square cloth one node
+	 * wide has segments but no triangles). */
 	for (j = 0; j < nv; j++)
 		for (i = 0; i + 1 < nu; i++)
-			cl->edge[2 * ne] = cloth_node(cl, i, j),
-			cl->edge[2 * ne + 1] = cloth_node(cl, i + 1, j), ne++;
+			if (node_at(cl, i, j) >= 0 && node_at(cl, i + 1, j) >= 0 &&
+			    warp_width(cl, sq, i, j) > 0)
+				cl->edge[2 * ne] = cloth_node(cl, i, j),
+				cl->edge[2 * ne + 1] = cloth_node(cl, i + 1, j), ne++;
 	for (j = 0; j + 1 < nv; j++)
 		for (i = 0; i < nu; i++)
-			cl->edge[2 * ne] = cloth_node(cl, i, j),
-			cl->edge[2 * ne + 1] = cloth_node(cl, i, j + 1), ne++;
+			if (node_at(cl, i, j) >= 0 && node_at(cl, i, j + 1) >= 0 &&
+			    weft_width(cl, sq, i, j) > 0)
+				cl->edge[2 * ne] = cloth_node(cl, i, j),
+				cl->edge[2 * ne + 1] = cloth_node(cl, i, j + 1), ne++;
+	cl->ntri = nt;
+	cl->nedges = ne;
 
 	if (build_adjacency(cl->n, cl->tri, cl->ntri, 3, &cl->node_tri_start, &cl->node_tri) != 0 ||
 	    build_adjacency(cl->n, cl->edge, cl->nedges, 2, &cl->node_edge_start,
@@ -173,29 +310,33 @@ int
 cloth_build(struct cloth *cl, const struct scene *sc, struct drape_err *err)
 {
 	vec3 o = v3_load(sc->origin), wu = v3_load(sc->warp_axis), wv = v3_load(sc->weft_axis);
-	int i, j;
+	unsigned char *sq = NULL;
+	int p;
 
 	memset(cl, 0, sizeof *cl);
+	cl->shape = sc->shape;
 	cl->nu = sc->nu;
 	cl->nv = sc->nv;
-	cl->n = sc->nu * sc->nv;
 	cl->h = sc->spacing;
-	cl->x0 = malloc((size_t)cl->n * 3 * sizeof *cl->x0);
-	cl->mass = malloc((size_t)cl->n * sizeof *cl->mass);
+	if (build_shape(cl, &sq) != 0)
+		goto oom;
+	cl->x0 = malloc((size_t)cl->n * 3 * sizeof *cl->x0 + 1);
+	cl->mass = malloc((size_t)cl->n * sizeof *cl->mass + 1);
 	if (cl->x0 == NULL || cl->mass == NULL)
 		goto oom;
-	for (j = 0; j < cl->nv; j++)
-		for (i = 0; i < cl->nu; i++) {
-			int p = cloth_node(cl, i, j);
+	for (p = 0; p < cl->n; p++) {
+		int i, j;
 
-			v3_store(cl->x0 + 3 * p, v3_madd(v3_madd(o, wu, i * cl->h), wv, j * cl->h));
-			cl->mass[p] = sc->mat.weight * tributary(i, cl->nu, cl->h) *
-			    tributary(j, cl->nv, cl->h);
-		}
-	if (build_elements(cl, sc) != 0 || build_triangles(cl) != 0)
+		cloth_grid_ij(cl, p, &i, &j);
+		v3_store(cl->x0 + 3 * p, v3_madd(v3_madd(o, wu, i * cl->h), wv, j * cl->h));
+		cl->mass[p] = node_mass(cl, sq, sc->mat.weight, i, j);
+	}
+	if (build_elements(cl, sc, sq) != 0 || build_triangles(cl, sq) != 0)
 		goto oom;
+	free(sq);
 	return 0;
 oom:
+	free(sq);
 	cloth_free(cl);
 	err_set(err, "%s: out of memory for a %d x %d cloth", sc->path, sc->nu, sc->nv);
 	return -1;
@@ -215,6 +356,8 @@ cloth_free(struct cloth *cl)
 	free(cl->node_tri);
 	free(cl->node_edge_start);
 	free(cl->node_edge);
+	free(cl->grid_node);
+	free(cl->node_grid);
 	memset(cl, 0, sizeof *cl);
 }
 

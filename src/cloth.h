@@ -1,7 +1,14 @@
-/* cloth.h: the particle network of the chapter's §3: nu x nv nodes on a grid
- * of square elements, their lumped masses, the elements that give internal
- * forces, and the triangles (with adjacency) that collision detection uses.
- * Node (i, j) is number j*nu + i; i runs along the warp, j along the weft.
+/* cloth.h: the particle network of the chapter's §3: nodes on an nu x nv
+ * grid of square elements, their lumped masses, the elements that give
+ * internal forces, and the triangles (with adjacency) that collision
+ * detection uses. i runs along the warp, j along the weft.
+ *
+ * A shaped cloth (shape = disc) keeps some of the grid's squares. Its nodes
+ * are numbered densely, so that everything downstream (forces, integrator,
+ * collisions, OBJ output) sees an ordinary network of n nodes and never a
+ * hole; grid_node and node_grid translate between the two numberings. The
+ * numbering is the grid's order (j, then i) with the missing positions left
+ * out, so a square cloth's node (i, j) is number j*nu + i.
  * Built once from a scene; nothing here changes during a run. */
 #ifndef DRAPE_CLOTH_H
 #define DRAPE_CLOTH_H
@@ -32,6 +39,7 @@ struct hinge {
 };
 
 struct cloth {
+	enum cloth_shape shape;
 	int nu, nv, n;		/* grid size and node count */
 	double h;		/* spacing */
 	double *x0;		/* rest positions, 3n */
@@ -52,6 +60,10 @@ struct cloth {
 	 * node i are [start[i], start[i+1]) */
 	int *node_tri_start, *node_tri;
 	int *node_edge_start, *node_edge;
+
+	int *grid_node;		/* nu*nv: the node at (i, j) is grid_node[j*nu + i], or -1 */
+	int *node_grid;		/* n: node p is at grid position node_grid[p] = j*nu + i */
+	size_t nsquares;	/* squares of the grid that are cloth */
 };
 
 int cloth_build(struct cloth *cl, const struct scene *sc, struct drape_err *err);
@@ -66,6 +78,19 @@ void cloth_clamp_hinges(struct cloth *cl, const unsigned char *held);
  * Gershgorin's theorem on the rest stiffness over the lightest masses. */
 double cloth_omega_bound(const struct cloth *cl);
 
-static inline int cloth_node(const struct cloth *cl, int i, int j) { return j * cl->nu + i; }
+/* The node at grid position (i, j), or -1 where the shape has none. */
+static inline int
+cloth_node(const struct cloth *cl, int i, int j)
+{
+	return cl->grid_node[j * cl->nu + i];
+}
+
+/* The grid position of node p. */
+static inline void
+cloth_grid_ij(const struct cloth *cl, int p, int *i, int *j)
+{
+	*i = cl->node_grid[p] % cl->nu;
+	*j = cl->node_grid[p] / cl->nu;
+}
 
 #endif

@@ -10,8 +10,11 @@
 #include "cmd.h"
 #include "obj.h"
 #include "scene.h"
+#include "shadow.h"
 #include "stepper.h"
 #include "units.h"
+
+#define DRAPE_RASTER 0.5e-3	/* m: the shadow's cells, 1/600 of a 30 cm specimen */
 
 static double
 now(void)
@@ -32,8 +35,83 @@ progress(const struct stepper *st, double wall)
 	    rate > 0 ? (st->t_end - st->t) / rate : 0);
 }
 
+/* The spatial hash's statistics of every step the broad phase ran in:
+ * sums for the means, the largest probe, the histograms added up. */
+struct hash_totals {
+	long steps;
+	double entries, cubes, shared, load, probe_mean;
+	int probe_max;
+	long hist[HASH_HIST];
+};
+
+static bool
+uses_hash(const struct stepper *st)
+{
+	return st->col.active && st->col.pairs &&
+	    (st->sc->col.broad == BROAD_SEED || st->sc->col.broad == BROAD_GRID);
+}
+
 static void
-summary(const struct stepper *st, double wall)
+hash_add(struct hash_totals *ht, const struct hash_stats *hs)
+{
+	int k;
+
+	ht->steps++;
+	ht->entries += (double)hs->entries;
+	ht->cubes += (double)hs->cubes;
+	ht->shared += (double)hs->shared;
+	ht->load += hs->load;
+	ht->probe_mean += hs->probe_mean;
+	if (hs->probe_max > ht->probe_max)
+		ht->probe_max = hs->probe_max;
+	for (k = 0; k < HASH_HIST; k++)
+		ht->hist[k] += hs->hist[k];
+}
+
+static void
+hash_summary(const struct hash_totals *ht)
+{
+	double n = ht->steps > 0 ? (double)ht->steps : 1;
+	int k;
+
+	printf("hash         per step %.1f items, %.1f cubes (%.1f with >= 2), load %.3f, "
+	    "probes mean %.3f max %d\n", ht->entries / n, ht->cubes / n, ht->shared / n,
+	    ht->load / n, ht->probe_mean / n, ht->probe_max);
+	printf("hash histogram");
+	for (k = 0; k < HASH_HIST; k++)
+		printf(" %d%s:%ld", k + 1, k + 1 == HASH_HIST ? "+" : "", ht->hist[k]);
+	printf(" (cubes by items, all steps)\n");
+}
+
+/* The Cusick drape test's coefficient, for a disc-shaped specimen on the
+ * scene's first [disc]. */
+static void
+drape_summary(const struct stepper *st)
+{
+	const struct scene *sc = st->sc;
+	const struct cloth *cl = &st->cl;
+	const struct obstacle *disc = NULL;
+	double shadow, support, flat, cell;
+	size_t o;
+
+	for (o = 0; o < sc->nobstacles && disc == NULL; o++)
+		if (sc->obstacles[o].kind == OBSTACLE_DISC)
+			disc = &sc->obstacles[o];
+	if (disc == NULL || cl->shape != SHAPE_DISC)
+		return;
+	if (shadow_area(stepper_x(st), cl->tri, cl->ntri, DRAPE_RASTER, &shadow, &cell) != 0) {
+		fprintf(stderr, "drape: no drape coefficient: out of memory for its shadow\n");
+		return;
+	}
+	support = V3_PI * disc->radius * disc->radius;
+	flat = mesh_area(cl->x0, cl->tri, cl->ntri);
+	printf("drape coefficient %.4f (shadow %.6f m2, support disc %.6f m2, flat specimen "
+	    "%.6f m2; %.2g mm raster)\n", drape_coefficient(shadow, support, flat), shadow,
+	    support, flat, cell * 1e3);
+}
+
+static void
+summary(const struct stepper *st, double wall, const struct hash_totals *ht)
 {
 	const struct scene *sc = st->sc;
 	const struct cloth *cl = &st->cl;
@@ -43,8 +121,13 @@ summary(const struct stepper *st, double wall)
 
 	stepper_energy(st, &e);
 	printf("scene        %s (%s)\n", sc->name, sc->path);
-	printf("network      %d x %d nodes, %zu springs, %zu shear corners, %zu bending hinges, "
-	    "%zu triangles\n", cl->nu, cl->nv, cl->nsprings, cl->ncorners, cl->nhinges, cl->ntri);
+	if (cl->shape == SHAPE_SQUARE)
+		printf("network      %d x %d nodes", cl->nu, cl->nv);
+	else
+		printf("network      %s of %d nodes in a %d x %d grid", cloth_shape_name[cl->shape],
+		    cl->n, cl->nu, cl->nv);
+	printf(", %zu springs, %zu shear corners, %zu bending hinges, %zu triangles\n",
+	    cl->nsprings, cl->ncorners, cl->nhinges, cl->ntri);
 	for (d = 0; d < 2; d++)
 		printf("bending %s %.4g N*m (%s)\n", dir[d], sc->mat.bending[d],
 		    sc->mat.bending_derived[d] ? "derived: modulus*thickness^3/12" : "given");
@@ -81,7 +164,10 @@ summary(const struct stepper *st, double wall)
 		printf("\n");
 		printf("corrections  %ld (%ld put back to step k; at most %d passes in a step; "
 		    "%ld steps unresolved)\n", c->corrections, c->frozen, c->passes, c->unresolved);
+		if (uses_hash(st))
+			hash_summary(ht);
 	}
+	drape_summary(st);
 	printf("state hash   %016" PRIx64 "\n", stepper_hash(st));
 }
 
@@ -111,6 +197,7 @@ cmd_run(int argc, char **argv)
 	struct stepper st;
 	struct drape_err err;
 	struct blowup bl;
+	struct hash_totals ht;
 	double t0, last;
 	char why[200];
 
@@ -178,6 +265,7 @@ cmd_run(int argc, char **argv)
 		return EXIT_USAGE;
 	}
 
+	memset(&ht, 0, sizeof ht);
 	t0 = last = now();
 	while (!stepper_done(&st)) {
 		if (stepper_step(&st, &bl) != 0) {
@@ -191,6 +279,8 @@ cmd_run(int argc, char **argv)
 			rc = EXIT_BLOWUP;
 			break;
 		}
+		if (uses_hash(&st))
+			hash_add(&ht, &st.col.st.broad.hash);
 		if (tty && (st.step & 255) == 0 && now() - last > 0.25) {
 			last = now();
 			progress(&st, last - t0);
@@ -198,7 +288,7 @@ cmd_run(int argc, char **argv)
 	}
 	if (tty)
 		fputs("\r\033[K", stderr);
-	summary(&st, now() - t0);
+	summary(&st, now() - t0, &ht);
 	if (rc == EXIT_OK && final_obj != NULL &&
 	    obj_write(final_obj, stepper_x(&st), st.cl.n, st.cl.tri, st.cl.ntri, &err) != 0) {
 		fprintf(stderr, "drape: %s\n", err.msg);

@@ -43,9 +43,18 @@ forces_init(struct forces *fo, const struct scene *sc, const struct cloth *cl,
 		for (b = 0; b < sl->nodes.n; b++)
 			for (int j = sl->nodes.b[b].j0; j <= sl->nodes.b[b].j1; j++)
 				for (int i = sl->nodes.b[b].i0; i <= sl->nodes.b[b].i1; i++)
-					in[cloth_node(cl, i, j)] = 1;
+					if (cloth_node(cl, i, j) >= 0)	/* else off the shape */
+						in[cloth_node(cl, i, j)] = 1;
 		for (p = 0; p < cl->n; p++)
 			lg->n += in[p];
+		if (lg->n == 0) {
+			free(in);
+			forces_free(fo);
+			err_set(err, "%s:%d: nodes: the set has no node on the %s cloth; expected "
+			    "grid positions inside its shape", sc->path, sl->line,
+			    cloth_shape_name[cl->shape]);
+			return -1;
+		}
 		if ((lg->node = malloc((size_t)lg->n * sizeof *lg->node)) == NULL) {
 			free(in);
 			goto oom;

@@ -38,6 +38,8 @@ prescribed_build(struct prescribed *pr, const struct scene *sc, const struct clo
 				for (int i = s->b[b].i0; i <= s->b[b].i1; i++) {
 					int p = cloth_node(cl, i, j);
 
+					if (p < 0)
+						continue;	/* off the cloth's shape */
 					if (pr->held[p] && owner[p] != m) {
 						err_set(err, "%s:%d: node %d %d already has its motion "
 						    "given by the section at line %d", sc->path,
@@ -51,6 +53,14 @@ prescribed_build(struct prescribed *pr, const struct scene *sc, const struct clo
 					pr->held[p] = 1;
 					owner[p] = m;
 				}
+		if (total == pr->start[m]) {
+			err_set(err, "%s:%d: nodes: the set has no node on the %s cloth; expected "
+			    "grid positions inside its shape", sc->path, sc->motions[m].line,
+			    cloth_shape_name[cl->shape]);
+			free(owner);
+			prescribed_free(pr);
+			return -1;
+		}
 	}
 	pr->start[pr->nmotions] = total;
 	pr->nnodes = total;

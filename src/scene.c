@@ -49,7 +49,7 @@ static const char *const simulation_keys[] = {
 	"name", "duration", "dt", "integrator", "tolerance", "gravity", "output_rate", NULL
 };
 static const char *const cloth_keys[] = {
-	"nodes", "spacing", "origin", "orientation", "velocity", "weight", "thickness",
+	"nodes", "shape", "spacing", "origin", "orientation", "velocity", "weight", "thickness",
 	"modulus_warp", "modulus_weft", "shear_modulus", "bending_warp", "bending_weft",
 	"damping", "spring_damping", NULL
 };
@@ -67,6 +67,8 @@ static const char *const disc_keys[] = { "centre", "radius", "height", "friction
 static const char *const mesh_keys[] = { "file", "scale", "offset", "friction", NULL };
 static const char *const icosahedron_keys[] = { "centre", "radius", "friction", NULL };
 
+static int get_word(struct pctx *, const struct group *, const char *, const char *const *,
+    int *);
 static int read_simulation(struct pctx *, const struct group *);
 static int read_cloth(struct pctx *, const struct group *);
 static int read_pin(struct pctx *, const struct group *);
@@ -98,6 +100,7 @@ static const struct section_kind {
 const char *const broad_mode_name[] = { "seed", "grid", "brute", NULL };
 const char *const narrow_mode_name[] = { "seed", "ccd", NULL };
 const char *const position_policy_name[] = { "keep", "q", "slide", NULL };
+const char *const cloth_shape_name[] = { "square", "disc", NULL };
 static const char *const inside_test_name[] = { "angle", "crossing", NULL };
 static const char *const switch_name[] = { "off", "on", NULL };
 #define NSECTION_KINDS (sizeof section_kinds / sizeof section_kinds[0])
@@ -313,6 +316,23 @@ read_bending(struct pctx *c, const struct group *g, const char *key, int dir)
 	return get_numbers(c, g, key, DIM_BENDING, 1, NONNEGATIVE, 1, &m->bending[dir]) < 0 ? -1 : 0;
 }
 
+/* A disc is the circle inscribed in a square grid; under 4 x 4 nodes it
+ * would hold no whole square (cloth.c keeps the squares inside it). */
+static int
+read_shape(struct pctx *c, const struct group *g)
+{
+	struct scene *sc = c->sc;
+	int shape = SHAPE_SQUARE;
+
+	if (get_word(c, g, "shape", cloth_shape_name, &shape) < 0)
+		return -1;
+	sc->shape = (enum cloth_shape)shape;
+	if (sc->shape == SHAPE_DISC && (sc->nu != sc->nv || sc->nu < 4))
+		return fail(c, find(g, "shape")->line, "shape = disc: expected a square grid of "
+		    "at least 4 x 4 nodes (nodes = n n), got %d x %d", sc->nu, sc->nv);
+	return 0;
+}
+
 static int
 read_cloth(struct pctx *c, const struct group *g)
 {
@@ -332,6 +352,8 @@ read_cloth(struct pctx *c, const struct group *g)
 		    "(%d nodes at most), got '%s'", MAX_GRID, MAX_NODES, e->value);
 	sc->nu = (int)nodes[0];
 	sc->nv = (int)nodes[1];
+	if (read_shape(c, g) != 0)
+		return -1;
 
 	if (get_numbers(c, g, "spacing", DIM_LENGTH, 1, POSITIVE, 1, &sc->spacing) < 0 ||
 	    get_numbers(c, g, "origin", DIM_LENGTH, 3, ANY, 0, sc->origin) < 0 ||

@@ -43,6 +43,14 @@ struct scene_load {
 	double start, stop;
 };
 
+/* The outline of the cloth cut from its nu x nv grid of squares. */
+enum cloth_shape {
+	SHAPE_SQUARE,		/* the whole grid */
+	SHAPE_DISC,		/* the squares inside the grid's inscribed circle */
+};
+
+extern const char *const cloth_shape_name[];
+
 struct material {
 	double weight;		/* kg/m2 */
 	double thickness;	/* m */
@@ -91,6 +99,7 @@ struct scene {
 	double output_rate;
 
 	int nu, nv;
+	enum cloth_shape shape;
 	double spacing;
 	double origin[3];
 	double warp_axis[3], weft_axis[3];

@@ -183,8 +183,7 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		bl->step = st->step;
 		bl->t = st->t;
 		bl->node = bad;
-		bl->i = bad % st->cl.nu;
-		bl->j = bad / st->cl.nu;
+		cloth_grid_ij(&st->cl, bad, &bl->i, &bl->j);
 		return 1;
 	}
 	/* 5. commit */

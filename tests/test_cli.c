@@ -1,6 +1,7 @@
 /* test_cli.c: the real binary: help and version, rejected scenes (message
- * with file:line, exit 2, nothing simulated), blow-up (exit 3), OBJ output,
- * determinism across runs. */
+ * with file:line, exit 2, nothing simulated), the drape coefficient and
+ * hash lines of the summary, blow-up (exit 3), OBJ output, determinism
+ * across runs. */
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -117,6 +118,10 @@ static const struct bad_case {
 	  "bending_warp = 0\n", 3, "needs 'bending_weft'" },
 	{ "stop before start", GOOD "[load]\nnodes = * *\nforce = 0 1 0\nstart = 2\nstop = 1\n", 17,
 	  "stop: expected a time after start" },
+	{ "disc not square", SIM "[cloth]\nnodes = 6 5\nshape = disc\n" CLOTH_BODY, 5,
+	  "shape = disc: expected a square grid" },
+	{ "pin off the disc", SIM "[cloth]\nnodes = 6 6\nshape = disc\n" CLOTH_BODY
+	  "[pin]\nnodes = 0 0\n", 14, "nodes: the set has no node on the disc cloth" },
 	{ "path not increasing", GOOD "[move]\nnodes = 0 0\npath = 1 0 0 0, 0.5 0 0 0\n", 15,
 	  "path: expected times after 0 that increase" },
 };
@@ -153,6 +158,48 @@ good_scene_runs(void **state)
 	assert_int_equal(r.status, 0);
 	assert_non_null(strstr(r.out, "state hash"));
 	assert_non_null(strstr(r.out, "simulated    0.01 s"));
+}
+
+/* A small Cusick test: an 11 x 11 disc falling onto a support disc. */
+#define CUSICK(broad) \
+	"[simulation]\nduration = 30 ms\n[cloth]\nnodes = 11 11\nshape = disc\n" \
+	"origin = -0.05 0.102 -0.05 m\n" CLOTH_BODY "[disc]\ncentre = 0 0.1 0\nradius = 3 cm\n" \
+	"height = 0.1\n[collision]\nself = on\nbroad = " broad "\n"
+
+static void
+drape_coefficient_and_hash(void **state)
+{
+	struct result r;
+	const char *at;
+	double dc;
+	int k;
+
+	(void)state;
+	run_text(&r, "cusick.scene", CUSICK("grid"));
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "network      disc of 77 nodes in a 11 x 11 grid"));
+	at = strstr(r.out, "drape coefficient ");
+	assert_non_null(at);
+	assert_int_equal(sscanf(at, "drape coefficient %lf", &dc), 1);
+	print_message("drape coefficient after 30 ms: %.4f\n", dc);
+	assert_true(dc > 0.9 && dc <= 1.01);	/* barely started to fall */
+	assert_non_null(strstr(r.out, "hash         per step "));
+	at = strstr(r.out, "hash histogram ");
+	assert_non_null(at);
+	for (k = 1; k <= HASH_HIST; k++) {
+		char bucket[16];
+
+		snprintf(bucket, sizeof bucket, " %d%s:", k, k == HASH_HIST ? "+" : "");
+		assert_non_null(strstr(at, bucket));
+	}
+	/* no hash for brute force; no coefficient for a square cloth */
+	run_text(&r, "cusick.scene", CUSICK("brute"));
+	assert_int_equal(r.status, 0);
+	assert_null(strstr(r.out, "\nhash "));
+	assert_non_null(strstr(r.out, "drape coefficient "));
+	run_text(&r, "good.scene", GOOD "[disc]\ncentre = 0 -0.1 0\nradius = 3 cm\nheight = 0.1\n");
+	assert_int_equal(r.status, 0);
+	assert_null(strstr(r.out, "drape coefficient"));
 }
 
 static void
@@ -230,6 +277,7 @@ main(void)
 		cmocka_unit_test(help_and_version),
 		cmocka_unit_test(bad_scenes_exit_2),
 		cmocka_unit_test(good_scene_runs),
+		cmocka_unit_test(drape_coefficient_and_hash),
 		cmocka_unit_test(blowup_exits_3),
 		cmocka_unit_test(final_obj),
 		cmocka_unit_test(two_runs_same_hash),

@@ -73,15 +73,14 @@ zero_properties_build_nothing(void **state)
 }
 
 static void
-adjacency_is_consistent(void **state)
+check_adjacency(const char *text)
 {
 	struct scene sc;
 	struct cloth cl;
 	size_t t, e, f;
 	int p, k;
 
-	(void)state;
-	build(&cl, &sc, CLOTH(6, 4, FULL));
+	build(&cl, &sc, text);
 	assert_int_equal(cl.node_tri_start[cl.n], 3 * (int)cl.ntri);
 	assert_int_equal(cl.node_edge_start[cl.n], 2 * (int)cl.nedges);
 	for (p = 0; p < cl.n; p++) {
@@ -127,6 +126,93 @@ adjacency_is_consistent(void **state)
 	scene_free(&sc);
 }
 
+static void
+adjacency_is_consistent(void **state)
+{
+	(void)state;
+	check_adjacency(CLOTH(6, 4, FULL));
+	check_adjacency(CLOTH(9, 9, "shape = disc\n" FULL));
+}
+
+/* The 5 x 5 disc, by hand: centre (2, 2), radius 2. The squares with all
+ * four corners within 2 of the centre are the four around it, so the cloth
+ * is the 3 x 3 block of nodes i, j = 1..3 (the four tips (0, 2), (2, 0),
+ * (4, 2), (2, 4) lie on the circle but belong to no such square):
+ * 9 nodes, 2 * 3 * 3 = 12 springs, 4 * 4 = 16 corners, 3 + 3 = 6 hinges,
+ * 8 triangles, 12 + 4 diagonals = 16 edges.
+ *
+ * The 9 x 9 disc (centre (4, 4), radius 4), o a node, . a grid position in
+ * the circle whose squares are not all in it:
+ *
+ *	    .          rows of nodes 5, 7, 7, 7, 7, 7, 5:        45 nodes
+ *	  ooooo        squares by row 4, 6, 6, 6, 6, 4:          32 squares
+ *	 ooooooo       warp springs (n - 1 a row) 4 + 5*6 + 4:   38, weft 38
+ *	 ooooooo       warp hinges (n - 2 a row) 3 + 5*5 + 3:    31, weft 31
+ *	.ooooooo.
+ *	 ooooooo
+ *	 ooooooo
+ *	  ooooo
+ *	    .
+ */
+static void
+disc_counts_and_masses(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+	double total = 0, h2 = 0.01 * 0.01;
+	int p, i, j;
+
+	(void)state;
+	build(&cl, &sc, CLOTH(5, 5, "shape = disc\n" FULL));
+	assert_int_equal(cl.n, 9);
+	assert_int_equal(cl.nsquares, 4);
+	assert_int_equal(cl.nsprings, 12);
+	assert_int_equal(cl.ncorners, 16);
+	assert_int_equal(cl.nhinges, 6);
+	assert_int_equal(cl.ntri, 8);
+	assert_int_equal(cl.nedges, 16);
+	assert_int_equal(cloth_node(&cl, 0, 2), -1);
+	assert_int_equal(cloth_node(&cl, 1, 1), 0);	/* dense, in grid order */
+	assert_int_equal(cloth_node(&cl, 3, 3), 8);
+	cloth_grid_ij(&cl, 5, &i, &j);
+	assert_int_equal(i, 3);
+	assert_int_equal(j, 2);
+	assert_double_equal(cl.x0[3 * 5], 0.03, 1e-15);
+	assert_double_equal(cl.x0[3 * 5 + 2], 0.02, 1e-15);
+	cloth_free(&cl);
+	scene_free(&sc);
+
+	build(&cl, &sc, CLOTH(9, 9, "shape = disc\n" FULL));
+	assert_int_equal(cl.n, 45);
+	assert_int_equal(cl.nsquares, 32);
+	assert_int_equal(cl.nsprings, 76);
+	assert_int_equal(cl.ncorners, 4 * 32);
+	assert_int_equal(cl.nhinges, 62);
+	assert_int_equal(cl.ntri, 64);
+	assert_int_equal(cl.nedges, 76 + 32);
+	for (p = 0; p < cl.n; p++) {
+		assert_true(cl.mass[p] > 0);
+		assert_true(cl.node_tri_start[p + 1] > cl.node_tri_start[p]);
+		cloth_grid_ij(&cl, p, &i, &j);
+		assert_int_equal(cloth_node(&cl, i, j), p);
+		total += cl.mass[p];
+	}
+	assert_double_equal(total, 0.1 * 32 * h2, 1e-15);
+	/* a quarter of each square around: 1 at a rim corner, 3 in a notch */
+	assert_double_equal(cl.mass[cloth_node(&cl, 2, 1)], 0.1 * h2 / 4, 1e-15);
+	assert_double_equal(cl.mass[cloth_node(&cl, 2, 2)], 0.1 * h2 * 3 / 4, 1e-15);
+	assert_double_equal(cl.mass[cloth_node(&cl, 4, 4)], 0.1 * h2, 1e-15);
+	/* the rim spring (2, 1)-(3, 1) stands for the half square inside it */
+	for (p = 0; p < (int)cl.nsprings; p++)
+		if (cl.springs[p].a == cloth_node(&cl, 2, 1) &&
+		    cl.springs[p].b == cloth_node(&cl, 3, 1))
+			break;
+	assert_true(p < (int)cl.nsprings);
+	assert_double_equal(cl.springs[p].k, 20e6 * 0.5e-3 / 2, 1e-9);
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
 static double
 total_elastic(const struct forces *fo, const double *x, const double *v)
 {
@@ -139,31 +225,27 @@ total_elastic(const struct forces *fo, const double *x, const double *v)
 /* Forces must be minus the gradient of the energy: central differences on
  * a crumpled configuration, every coordinate of every node. */
 static void
-forces_are_energy_gradient(void **state)
+gradient_check(const struct scene *sc, const struct cloth *cl)
 {
-	struct scene sc;
-	struct cloth cl;
 	struct forces fo;
 	struct drape_err err;
 	double *x, *v, *a, worst = 0, scale = 0;
 	uint64_t rng = 12345;
 	int p, k;
 
-	(void)state;
-	build(&cl, &sc, CLOTH(5, 4, FULL "[load]\nnodes = 2 2\nforce = 0.01 0 0\n"));
-	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);
-	x = malloc(3 * (size_t)cl.n * sizeof *x);
-	v = calloc(3 * (size_t)cl.n, sizeof *v);
-	a = malloc(3 * (size_t)cl.n * sizeof *a);
+	assert_int_equal(forces_init(&fo, sc, cl, &err), 0);
+	x = malloc(3 * (size_t)cl->n * sizeof *x);
+	v = calloc(3 * (size_t)cl->n, sizeof *v);
+	a = malloc(3 * (size_t)cl->n * sizeof *a);
 	assert_non_null(x);
 	assert_non_null(v);
 	assert_non_null(a);
-	for (k = 0; k < 3 * cl.n; k++) {	/* up to 40 % of h off the grid */
+	for (k = 0; k < 3 * cl->n; k++) {	/* up to 40 % of h off the grid */
 		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-		x[k] = cl.x0[k] + 0.004 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5) * 2;
+		x[k] = cl->x0[k] + 0.004 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5) * 2;
 	}
 	forces_accel(&fo, 0, x, v, a);
-	for (p = 0; p < cl.n; p++)
+	for (p = 0; p < cl->n; p++)
 		for (k = 0; k < 3; k++) {
 			double save = x[3 * p + k], h = 1e-7, ep, em, f_num, f;
 
@@ -173,7 +255,7 @@ forces_are_energy_gradient(void **state)
 			em = total_elastic(&fo, x, v);
 			x[3 * p + k] = save;
 			f_num = -(ep - em) / (2 * h);
-			f = a[3 * p + k] * cl.mass[p];
+			f = a[3 * p + k] * cl->mass[p];
 			worst = fmax(worst, fabs(f - f_num));
 			scale = fmax(scale, fabs(f));
 		}
@@ -184,6 +266,22 @@ forces_are_energy_gradient(void **state)
 	free(v);
 	free(a);
 	forces_free(&fo);
+}
+
+static void
+forces_are_energy_gradient(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+
+	(void)state;
+	build(&cl, &sc, CLOTH(5, 4, FULL "[load]\nnodes = 2 2\nforce = 0.01 0 0\n"));
+	gradient_check(&sc, &cl);
+	cloth_free(&cl);
+	scene_free(&sc);
+	/* a disc: its rim has the half-width springs and hinges */
+	build(&cl, &sc, CLOTH(9, 9, "shape = disc\n" FULL "[load]\nnodes = 4 4\nforce = 0.01 0 0\n"));
+	gradient_check(&sc, &cl);
 	cloth_free(&cl);
 	scene_free(&sc);
 }
@@ -236,6 +334,7 @@ main(void)
 		cmocka_unit_test(counts_and_masses),
 		cmocka_unit_test(zero_properties_build_nothing),
 		cmocka_unit_test(adjacency_is_consistent),
+		cmocka_unit_test(disc_counts_and_masses),
 		cmocka_unit_test(forces_are_energy_gradient),
 		cmocka_unit_test(rigid_motion_is_free),
 	};

@@ -130,10 +130,76 @@ path_motion(void **state)
 	scene_free(&sc);
 }
 
+#define DISC_CLOTH(nodes, shape) \
+	"[simulation]\nduration = 1\n[cloth]\nnodes = " nodes "\nshape = " shape "\n" \
+	"spacing = 10 mm\nweight = 120 g/m2\nthickness = 0.3 mm\nmodulus_warp = 30 MPa\n" \
+	"modulus_weft = 20 MPa\nshear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n"
+
+/* Fails unless text is rejected with "test.scene:LINE: ...expect...". */
+static void
+rejected(const char *text, int line, const char *expect)
+{
+	struct scene sc;
+	struct drape_err err;
+	char where[64];
+
+	snprintf(where, sizeof where, "test.scene:%d: ", line);
+	if (scene_parse(&sc, "test.scene", text, &err) == 0) {
+		scene_free(&sc);
+		fail_msg("accepted; expected '%s%s'", where, expect);
+	}
+	if (strncmp(err.msg, where, strlen(where)) != 0 || strstr(err.msg, expect) == NULL)
+		fail_msg("'%s'; expected '%s%s'", err.msg, where, expect);
+}
+
+static void
+cloth_shape(void **state)
+{
+	struct scene sc;
+
+	(void)state;
+	parse_text(&sc, MINIMAL);
+	assert_int_equal(sc.shape, SHAPE_SQUARE);
+	scene_free(&sc);
+	parse_text(&sc, DISC_CLOTH("5 5", "disc"));
+	assert_int_equal(sc.shape, SHAPE_DISC);
+	scene_free(&sc);
+	rejected(DISC_CLOTH("5 6", "disc"), 5, "shape = disc: expected a square grid of at "
+	    "least 4 x 4 nodes (nodes = n n), got 5 x 6");
+	rejected(DISC_CLOTH("3 3", "disc"), 5, "got 3 x 3");
+	rejected(DISC_CLOTH("5 5", "circle"), 5, "shape: expected one of square, disc, got "
+	    "'circle'");
+}
+
+/* On a disc, a selector's grid positions off the disc are skipped; a set
+ * left with none is an error at its section. */
+static void
+selectors_on_a_disc(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	struct drape_err err;
+
+	(void)state;
+	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = * 1\n");
+	init_stepper(&st, &sc);
+	assert_int_equal(st.pr.nnodes, 3);	/* (1..3, 1) */
+	stepper_free(&st);
+	scene_free(&sc);
+	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = 0 *\n");
+	assert_int_not_equal(stepper_init(&st, &sc, &err), 0);
+	assert_non_null(strstr(err.msg, "test.scene:14: nodes: the set has no node on the disc"));
+	scene_free(&sc);
+	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[load]\nnodes = 2 0\nforce = 0 1 0\n");
+	assert_int_not_equal(stepper_init(&st, &sc, &err), 0);
+	assert_non_null(strstr(err.msg, "test.scene:14: nodes: the set has no node on the disc"));
+	scene_free(&sc);
+}
+
 static void
 every_shipped_scene_parses(void **state)
 {
-	static const char *names[] = { "cantilever", "hanging", "free-fall" };
+	static const char *names[] = { "cantilever", "hanging", "free-fall", "drape" };
 	size_t i;
 
 	(void)state;
@@ -160,6 +226,8 @@ main(void)
 		cmocka_unit_test(selectors_blocks),
 		cmocka_unit_test(gravity_forms),
 		cmocka_unit_test(path_motion),
+		cmocka_unit_test(cloth_shape),
+		cmocka_unit_test(selectors_on_a_disc),
 		cmocka_unit_test(every_shipped_scene_parses),
 	};
 

@@ -1,0 +1,130 @@
+/* shadow.c: rasterizing the projected triangles onto one bitmap; the union
+ * comes free, since a cell is marked once however many triangles cover it. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "shadow.h"
+#include "vec3.h"
+
+/* Twice the signed area of (a, b, p) in the x-z plane: > 0 when p is to the
+ * left of a->b seen with x to the right and z up. */
+static double
+orient(const double *a, const double *b, double px, double pz)
+{
+	return (b[0] - a[0]) * (pz - a[2]) - (b[2] - a[2]) * (px - a[0]);
+}
+
+/* The first and last cell whose centre lo + (k + 1/2) cell lies in [a, b],
+ * clamped to [0, n). */
+static void
+cell_span(double a, double b, double lo, double cell, long n, long *k0, long *k1)
+{
+	double f0 = ceil((a - lo) / cell - 0.5), f1 = floor((b - lo) / cell - 0.5);
+
+	*k0 = f0 < 0 ? 0 : (long)f0;
+	*k1 = f1 >= (double)n ? n - 1 : (long)f1;
+}
+
+static void
+mark_triangle(unsigned char *raster, long nx, long nz, double lox, double loz, double cell,
+    const double *a, const double *b, const double *c)
+{
+	double area2 = orient(a, b, c[0], c[2]);
+	long i0, i1, k0, k1, i, k;
+
+	if (area2 == 0)
+		return;		/* edge-on: no shadow */
+	if (area2 < 0) {	/* counter-clockwise, so that inside is >= 0 */
+		const double *t = b;
+
+		b = c;
+		c = t;
+	}
+	cell_span(fmin(a[0], fmin(b[0], c[0])), fmax(a[0], fmax(b[0], c[0])), lox, cell, nx,
+	    &i0, &i1);
+	cell_span(fmin(a[2], fmin(b[2], c[2])), fmax(a[2], fmax(b[2], c[2])), loz, cell, nz,
+	    &k0, &k1);
+	for (k = k0; k <= k1; k++) {
+		double pz = loz + ((double)k + 0.5) * cell;
+
+		for (i = i0; i <= i1; i++) {
+			double px = lox + ((double)i + 0.5) * cell;
+
+			if (orient(a, b, px, pz) >= 0 && orient(b, c, px, pz) >= 0 &&
+			    orient(c, a, px, pz) >= 0)
+				raster[k * nx + i] = 1;
+		}
+	}
+}
+
+int
+shadow_area(const double *x, const int *tri, size_t ntri, double cell, double *area,
+    double *cell_used)
+{
+	double lox = INFINITY, hix = -INFINITY, loz = INFINITY, hiz = -INFINITY, w, d;
+	unsigned char *raster;
+	long nx, nz, count = 0, c;
+	size_t t;
+
+	*area = 0;
+	if (cell_used != NULL)
+		*cell_used = cell;
+	for (t = 0; t < 3 * ntri; t++) {
+		const double *p = x + 3 * tri[t];
+
+		if (!isfinite(p[0]) || !isfinite(p[2])) {
+			*area = NAN;
+			return 0;
+		}
+		lox = fmin(lox, p[0]);
+		hix = fmax(hix, p[0]);
+		loz = fmin(loz, p[2]);
+		hiz = fmax(hiz, p[2]);
+	}
+	if (ntri == 0)
+		return 0;
+	w = hix - lox;
+	d = hiz - loz;
+	if (!(cell > 0) || !isfinite(cell)) {
+		*area = NAN;
+		return 0;
+	}
+	while ((floor(w / cell) + 1) * (floor(d / cell) + 1) > (double)SHADOW_MAX_CELLS)
+		cell *= 2;
+	nx = (long)floor(w / cell) + 1;
+	nz = (long)floor(d / cell) + 1;
+	if ((raster = calloc((size_t)(nx * nz), 1)) == NULL)
+		return -1;
+	for (t = 0; t < ntri; t++)
+		mark_triangle(raster, nx, nz, lox, loz, cell, x + 3 * tri[3 * t],
+		    x + 3 * tri[3 * t + 1], x + 3 * tri[3 * t + 2]);
+	for (c = 0; c < nx * nz; c++)
+		count += raster[c];
+	free(raster);
+	*area = (double)count * cell * cell;
+	if (cell_used != NULL)
+		*cell_used = cell;
+	return 0;
+}
+
+double
+mesh_area(const double *x, const int *tri, size_t ntri)
+{
+	double sum = 0;
+	size_t t;
+
+	for (t = 0; t < ntri; t++) {
+		vec3 a = v3_load(x + 3 * tri[3 * t]);
+		vec3 ab = v3_sub(v3_load(x + 3 * tri[3 * t + 1]), a);
+		vec3 ac = v3_sub(v3_load(x + 3 * tri[3 * t + 2]), a);
+
+		sum += v3_len(v3_cross(ab, ac)) / 2;
+	}
+	return sum;
+}
+
+double
+drape_coefficient(double shadow, double support, double flat)
+{
+	return flat > support ? (shadow - support) / (flat - support) : NAN;
+}

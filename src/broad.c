@@ -24,6 +24,7 @@ broad_free(struct broad *b)
 	free(b->ee);
 	free(b->stamp);
 	free(b->box);
+	free(b->allowed);
 	memset(b, 0, sizeof *b);
 }
 
@@ -281,6 +282,33 @@ vertex_box(double *bx, const struct geom *g, int v)
 	}
 }
 
+static void
+allowed_box(double *bx, const struct broad *b, int v)
+{
+	box_add(bx, b->allowed + 6 * v);
+	box_add(bx, b->allowed + 6 * v + 3);
+}
+
+/* grid: 1 if every vertex is still inside the box its pairs were found
+ * for, so that they still hold. */
+static int
+still_allowed(const struct broad *b, const struct geom *g)
+{
+	int v, k;
+
+	for (v = 0; v < g->nv; v++) {
+		double bx[6];
+		const double *a = b->allowed + 6 * v;
+
+		box_empty(bx);
+		vertex_box(bx, g, v);
+		for (k = 0; k < 3; k++)
+			if (bx[k] < a[k] || bx[3 + k] > a[3 + k])
+				return 0;
+	}
+	return 1;
+}
+
 /* A fill of h with the boxes [first, first + count), each in every cube it
  * overlaps. */
 static int
@@ -310,6 +338,11 @@ fill_boxes(struct spatial_hash *h, const double *box, size_t first, size_t count
 	return 0;
 }
 
+/* grid: each vertex's box is widened by this fraction of the cube edge when
+ * the pairs are found, and they are kept for the next steps as long as
+ * every vertex stays inside its widened box (a Verlet list's skin) */
+#define GRID_SKIN 0.1
+
 /*
  * grid: the chapter's hash holds triangles (and edges) instead of nodes,
  * each in every cube its swept box (step k to k+1) overlaps, and each
@@ -320,19 +353,33 @@ fill_boxes(struct spatial_hash *h, const double *box, size_t first, size_t count
  * neighbours) and the
  * triangle's swept box. Two boxes that share a point share a cube, since
  * both were put in every cube they overlap, whatever the cube size; the
- * cube size only sets the cost. Edges the same way.
+ * cube size only sets the cost. Edges the same way. The pairs are found
+ * for boxes widened by a skin and kept while each vertex's box of the step
+ * stays inside its widened one: two boxes of a later step that share a
+ * point lie in widened boxes that share it, whose pair was found.
  */
 static int
 find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, struct drape_err *err)
 {
 	struct spatial_hash *h = &b->hash, *he = &b->hash_edges;
 	size_t nbox = g->ntri + (want_ee ? g->nedges : 0), i;
-	double region[6], qb[6];
+	double region[6], qb[6], skin = GRID_SKIN * cell;
 	int lo[3], hi[3], x, y, z, v, k;
 
 	if (grow((void **)&b->box, &b->boxcap, 6 * nbox, sizeof *b->box) != 0 ||
-	    grow((void **)&b->stamp, &b->stampcap, nbox, sizeof *b->stamp) != 0)
+	    grow((void **)&b->stamp, &b->stampcap, nbox, sizeof *b->stamp) != 0 ||
+	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0)
 		goto oom;
+	for (v = 0; v < g->nv; v++) {
+		double *a = b->allowed + 6 * v;
+
+		box_empty(a);
+		vertex_box(a, g, v);
+		for (k = 0; k < 3; k++) {
+			a[k] -= skin;
+			a[3 + k] += skin;
+		}
+	}
 	box_empty(region);
 	for (i = 0; i < nbox; i++) {
 		const int *n = i < g->ntri ? g->tri + 3 * i : g->edge + 2 * (i - g->ntri);
@@ -341,7 +388,7 @@ find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 
 		box_empty(bx);
 		for (k = 0; k < nn; k++)
-			vertex_box(bx, g, n[k]);
+			allowed_box(bx, b, n[k]);
 		box_add(region, bx);
 		box_add(region, bx + 3);
 		b->stamp[i] = -1;
@@ -367,11 +414,11 @@ find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 		if (v >= g->ncloth && !want_ee)
 			break;
 		box_empty(qb);
-		vertex_box(qb, g, v);
+		allowed_box(qb, b, v);
 		for (k = g->vedge_start[v]; !want_ee && k < g->vedge_start[v + 1]; k++) {
 			const int *en = g->edge + 2 * g->vedge[k];
 
-			box_add(qb, g->x0 + 3 * (en[0] == v ? en[1] : en[0]));
+			allowed_box(qb, b, en[0] == v ? en[1] : en[0]);
 		}
 		cube_range(h, qb, lo, hi);
 		for (y = lo[1]; y <= hi[1]; y++)
@@ -454,8 +501,15 @@ broad_find(struct broad *b, const struct geom *g, double cell, enum narrow_mode 
 	bool want_ee = narrow == NARROW_CCD;
 	int rc;
 
+	if (b->mode == BROAD_GRID && b->valid && b->valid_narrow == narrow &&
+	    b->valid_cell == cell && b->valid_nv == g->nv && still_allowed(b, g)) {
+		b->st.rebuilt = false;
+		return 0;
+	}
+	b->valid = false;
 	b->nvt = b->nee = 0;
 	memset(&b->st, 0, sizeof b->st);
+	b->st.rebuilt = true;
 	b->st.cell = b->mode == BROAD_BRUTE ? 0 : cell;
 	switch (b->mode) {
 	case BROAD_SEED:
@@ -476,5 +530,11 @@ broad_find(struct broad *b, const struct geom *g, double cell, enum narrow_mode 
 		sort_runs(b);	/* found vertex by vertex, each triangle once */
 	b->st.vt_pairs = (long)b->nvt;
 	b->st.ee_pairs = (long)b->nee;
+	if (b->mode == BROAD_GRID) {
+		b->valid = true;
+		b->valid_narrow = narrow;
+		b->valid_cell = cell;
+		b->valid_nv = g->nv;
+	}
 	return 0;
 }

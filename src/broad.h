@@ -50,6 +50,8 @@ struct broad_stats {
 	struct hash_stats hash;	/* zero for brute */
 	long node_pairs;	/* seed: pairs of nodes sharing a cube */
 	long vt_pairs, ee_pairs;	/* what the narrow phase gets */
+	bool rebuilt;		/* grid: the pairs were found anew this step (else
+				 * the last step's still hold; hash is that fill's) */
 };
 
 struct broad {
@@ -64,6 +66,12 @@ struct broad {
 	size_t stampcap;
 	double *box;		/* grid: swept boxes of triangles then edges, 6 each */
 	size_t boxcap;
+	double *allowed;	/* grid: per vertex, the widened box its pairs hold for */
+	size_t allowedcap;
+	bool valid;		/* grid: the pairs may be kept (see broad.c) */
+	enum narrow_mode valid_narrow;
+	double valid_cell;
+	int valid_nv;
 	struct broad_stats st;
 };
 

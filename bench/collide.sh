@@ -280,7 +280,7 @@ if command -v "$gnuplot" >/dev/null 2>&1; then
 	fi
 else
 	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
-	echo "  To draw bench/out/collide.png, install it:  sudo apt-get install -y gnuplot-nox"
+	echo "  To draw $out/collide.png, install it:  sudo apt-get install -y gnuplot-nox"
 	echo "  (Debian/Ubuntu; gnuplot elsewhere), then run make bench again."
 fi
 exit $bad

@@ -462,6 +462,49 @@ contact_impulse(struct collide *c, long step, double dt, double toi, int nvert, 
 	return 0;
 }
 
+/*
+ * The last resort, for a contact still there after FAILSAFE_PASS passes:
+ * its vertices go back to step k, where the network was consistent, and
+ * move on together, at their mass-weighted mean velocity (or that of the
+ * ones that cannot move): a perfectly inelastic impact in every direction.
+ * Keeping each its own velocity instead would let a node jammed between
+ * layers keep a speed that neither its forces nor damping can change.
+ */
+static int
+stick(struct collide *c, long step, int nvert, const int *vert, enum contact_type type, int other,
+    int obstacle, vec3 q, vec3 n)
+{
+	vec3 p = v3(0, 0, 0), pf = v3(0, 0, 0), vm, vn_before[4];
+	double m = 0;
+	int k, nfixed = 0;
+
+	for (k = 0; k < nvert; k++) {
+		double im = c->inv_mass[vert[k]];
+
+		vn_before[k] = V1(c, vert[k]);
+		if (im == 0) {
+			pf = v3_add(pf, V1(c, vert[k]));
+			nfixed++;
+		} else {
+			p = v3_madd(p, V1(c, vert[k]), 1 / im);
+			m += 1 / im;
+		}
+	}
+	vm = nfixed > 0 ? v3_scale(pf, 1.0 / nfixed) : v3_scale(p, 1 / m);
+	for (k = 0; k < nvert; k++) {
+		int v = vert[k];
+
+		if (c->inv_mass[v] == 0)
+			continue;
+		freeze(c, v);
+		v3_store(c->v1 + 3 * v, vm);
+		if (add_event(c, step, v, type, other, obstacle, q, n, v3_dot(vn_before[k], n),
+		    v3_dot(vm, n)) != 0)
+			return -1;
+	}
+	return 0;
+}
+
 /* Barycentric coordinates of p's projection on triangle abc, clamped to
  * the triangle (a conservative test may report a point just outside). */
 static void
@@ -513,8 +556,7 @@ ccd_vertex_triangle(struct collide *c, long step, double dt, int v, int t, doubl
 	}
 	q = v3_madd(p, n, -v3_dot(v3_sub(p, a), n));
 	if (pass >= FAILSAFE_PASS)
-		for (k = 0; k < 4; k++)
-			freeze(c, vert[k]);
+		return stick(c, step, 4, vert, CONTACT_NODE_FACE, t, c->tri_obstacle[t], q, n);
 	return contact_impulse(c, step, dt, toi, 4, vert, w, n, g0, CONTACT_NODE_FACE, t,
 	    c->tri_obstacle[t], q);
 }
@@ -541,7 +583,7 @@ ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, i
 	const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb;
 	vec3 pa0, pa1, pb0, pb1, n, q, sep;
 	double s, u, w[4];
-	int vert[4] = { na[0], na[1], nb[0], nb[1] }, k, obstacle = -1;
+	int vert[4] = { na[0], na[1], nb[0], nb[1] }, obstacle = -1;
 
 	if (nb[0] >= c->ncloth)	/* an obstacle's edge: its vertex's first triangle says which */
 		obstacle = c->tri_obstacle[c->vtri[c->vtri_start[nb[0]]]];
@@ -566,8 +608,7 @@ ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, i
 	w[2] = -(1 - u);
 	w[3] = -u;
 	if (pass >= FAILSAFE_PASS)
-		for (k = 0; k < 4; k++)
-			freeze(c, vert[k]);
+		return stick(c, step, 4, vert, CONTACT_EDGE_EDGE, eb, obstacle, q, n);
 	return contact_impulse(c, step, dt, toi, 4, vert, w, n, v3_dot(sep, n), CONTACT_EDGE_EDGE, eb,
 	    obstacle, q);
 }

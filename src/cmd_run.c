@@ -35,8 +35,9 @@ progress(const struct stepper *st, double wall)
 	    rate > 0 ? (st->t_end - st->t) / rate : 0);
 }
 
-/* The spatial hash's statistics of every step the broad phase ran in:
- * sums for the means, the largest probe, the histograms added up. */
+/* The spatial hash's statistics of every fill (seed fills it every step;
+ * grid when its pairs no longer hold): sums for the means, the largest
+ * probe, the histograms added up. */
 struct hash_totals {
 	long steps;
 	double entries, cubes, shared, load, probe_mean;
@@ -69,18 +70,18 @@ hash_add(struct hash_totals *ht, const struct hash_stats *hs)
 }
 
 static void
-hash_summary(const struct hash_totals *ht)
+hash_summary(const struct hash_totals *ht, long steps)
 {
 	double n = ht->steps > 0 ? (double)ht->steps : 1;
 	int k;
 
-	printf("hash         per step %.1f items, %.1f cubes (%.1f with >= 2), load %.3f, "
-	    "probes mean %.3f max %d\n", ht->entries / n, ht->cubes / n, ht->shared / n,
-	    ht->load / n, ht->probe_mean / n, ht->probe_max);
+	printf("hash         per fill %.1f items, %.1f cubes (%.1f with >= 2), load %.3f, "
+	    "probes mean %.3f max %d; %ld fills in %ld steps\n", ht->entries / n, ht->cubes / n,
+	    ht->shared / n, ht->load / n, ht->probe_mean / n, ht->probe_max, ht->steps, steps);
 	printf("hash histogram");
 	for (k = 0; k < HASH_HIST; k++)
 		printf(" %d%s:%ld", k + 1, k + 1 == HASH_HIST ? "+" : "", ht->hist[k]);
-	printf(" (cubes by items, all steps)\n");
+	printf(" (cubes by items, all fills)\n");
 }
 
 /* The Cusick drape test's coefficient, for a disc-shaped specimen on the
@@ -165,7 +166,7 @@ summary(const struct stepper *st, double wall, const struct hash_totals *ht)
 		printf("corrections  %ld (%ld put back to step k; at most %d passes in a step; "
 		    "%ld steps unresolved)\n", c->corrections, c->frozen, c->passes, c->unresolved);
 		if (uses_hash(st))
-			hash_summary(ht);
+			hash_summary(ht, st->step);
 	}
 	drape_summary(st);
 	printf("state hash   %016" PRIx64 "\n", stepper_hash(st));
@@ -279,7 +280,7 @@ cmd_run(int argc, char **argv)
 			rc = EXIT_BLOWUP;
 			break;
 		}
-		if (uses_hash(&st))
+		if (uses_hash(&st) && st.col.st.broad.rebuilt)
 			hash_add(&ht, &st.col.st.broad.hash);
 		if (tty && (st.step & 255) == 0 && now() - last > 0.25) {
 			last = now();

@@ -11,7 +11,8 @@
 #
 # Environment:
 #   BENCH_RUNS        runs per scene and mode (default 3)
-#   BENCH_UNTIL       simulated time of each run (default 0.2 s)
+#   BENCH_UNTIL       simulated time of each run (default 1 s: both scenes
+#                     are in self-contact by then)
 #   BENCH_BRUTE_UNTIL simulated time of the brute runs (default 0.1 s)
 #   BENCH_SCENES      scene names under scenes/ (default "tablecloth strip")
 #   BENCH_OUT         output directory (default bench/out)
@@ -25,7 +26,7 @@ srcdir=${BENCH_SRCDIR:-$(cd "$here/.." && pwd)}
 drape=${DRAPE:-$srcdir/src/drape}
 out=${BENCH_OUT:-$srcdir/bench/out}
 runs=${BENCH_RUNS:-3}
-until_t=${BENCH_UNTIL:-0.2}
+until_t=${BENCH_UNTIL:-1}
 brute_t=${BENCH_BRUTE_UNTIL:-0.1}
 scenes=${BENCH_SCENES:-tablecloth strip}
 

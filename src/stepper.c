@@ -139,6 +139,17 @@ find_blowup(const struct stepper *st, const double *y, char *why, size_t len)
 	return -1;
 }
 
+/* Fills bl for node `bad` (bl->why is set); returns 1. */
+static int
+blown_up(const struct stepper *st, struct blowup *bl, int bad)
+{
+	bl->step = st->step;
+	bl->t = st->t;
+	bl->node = bad;
+	cloth_grid_ij(&st->cl, bad, &bl->i, &bl->j);
+	return 1;
+}
+
 int
 stepper_step(struct stepper *st, struct blowup *bl)
 {
@@ -170,7 +181,10 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		t_new = st->t + h;
 	/* 2. specified displacements */
 	prescribed_apply(&st->pr, &st->cl, t_new, st->y_next, st->y_next + n3);
-	/* 3. collisions: self-contact, obstacles */
+	/* 3. collisions: self-contact, obstacles; not on a state that has
+	 * already blown up, whose extent no broad phase could cut into cubes */
+	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0)
+		return blown_up(st, bl, bad);
 	if (collide_step(&st->col, st->step, h, st->y, st->y_next, &cerr) != 0) {
 		bl->step = st->step;
 		bl->t = st->t;
@@ -179,13 +193,8 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		return 1;
 	}
 	/* 4. blow-up check before anything is committed */
-	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0) {
-		bl->step = st->step;
-		bl->t = st->t;
-		bl->node = bad;
-		cloth_grid_ij(&st->cl, bad, &bl->i, &bl->j);
-		return 1;
-	}
+	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0)
+		return blown_up(st, bl, bad);
 	/* 5. commit */
 	swap = st->y;
 	st->y = st->y_next;

@@ -7,10 +7,12 @@
  * narrow = seed runs the chapter's procedure once: at the first hit of a
  * node it is corrected (eq. 11-17), then the obstacles are checked for the
  * nodes with no self-contact (§4).
- * narrow = ccd finds every vertex-face and edge-edge contact over the step,
- * corrects them the same way, then tests again the pairs whose nodes moved;
- * from the third pass on, a node still in contact is put back to step k
- * (where the network was consistent), which ends in at most one pass per
+ * narrow = ccd finds every vertex-face and edge-edge contact over the step
+ * and answers it with an inelastic impulse shared by both sides (the node
+ * and the triangle, or the two edges) by their masses, then tests again
+ * the pairs whose nodes moved; from the sixth pass on, a contact still
+ * there sticks: its vertices go back to step k (where the network was
+ * consistent) at their mean velocity, which ends in at most one pass per
  * node and leaves no crossing behind. */
 #ifndef DRAPE_COLLIDE_H
 #define DRAPE_COLLIDE_H

@@ -386,9 +386,8 @@ unit_or(vec3 a, vec3 fallback)
  * The contact is given by its points: vert[k] with weight w[k], positive on
  * one side (the node, edge a), negative on the other (the triangle, edge
  * b), so that sum w[k] x[k] is the separation and n points from the
- * negative side to the positive one at step k. Along n the relative
- * velocity is made -e times what it was (e = 0: eq. 12), and Coulomb and
- * viscous friction act on the relative sliding velocity. The positions
+ * negative side to the positive one at step k; g0 is that separation along
+ * n at step k. The velocities are response_shared's. The positions
  * follow the scene's policy: keep puts the vertices back at step k (the
  * chapter's choice), q at the contact (toi, where the two touch), and slide
  * restores step k's gap along n, each side moving as its mass says, and
@@ -400,63 +399,36 @@ contact_impulse(struct collide *c, long step, double dt, double toi, int nvert, 
     const double *w, vec3 n, double g0, enum contact_type type, int other, int obstacle, vec3 q)
 {
 	struct friction fr = friction_of(c, obstacle);
-	double den = 0, g1 = 0, vr, j, vn_before[4];
-	vec3 rel = v3(0, 0, 0), vt;
+	double den = 0, g1 = 0, im[4];
+	vec3 v[4], v_before[4];
 	int k;
 
 	for (k = 0; k < nvert; k++) {
-		den += w[k] * w[k] * c->inv_mass[vert[k]];
-		rel = v3_madd(rel, V1(c, vert[k]), w[k]);
+		im[k] = c->inv_mass[vert[k]];
+		den += w[k] * w[k] * im[k];
 		g1 += w[k] * v3_dot(X1(c, vert[k]), n);
-		vn_before[k] = v3_dot(V1(c, vert[k]), n);
+		v[k] = v_before[k] = V1(c, vert[k]);
 	}
-	if (!(den > 0))
+	if (response_shared(nvert, w, im, v, n, c->opt.restitution, &fr, dt) < 0)
 		return 0;	/* nothing here can move */
 	g1 -= g0 > 0 ? g0 : 0;	/* < 0: closer than at step k, or crossed */
-	vr = v3_dot(rel, n);
-	j = vr < 0 ? -(1 + c->opt.restitution) * vr / den : 0;
-	vt = v3_madd(rel, n, -vr);
 	for (k = 0; k < nvert; k++) {
-		int v = vert[k];
-		double im = c->inv_mass[v];
+		int p = vert[k];
+		double sgn = w[k] > 0 ? 1 : -1;
 
-		if (im == 0)
+		if (im[k] == 0)
 			continue;
-		v3_store(c->v1 + 3 * v, v3_madd(V1(c, v), n, w[k] * im * j));
-	}
-	if (v3_len(vt) > 0 && (fr.mu > 0 || fr.viscous > 0)) {
-		double st = v3_len(vt), keep = 1;
-		vec3 u = v3_scale(vt, 1 / st);
-
-		if (fr.mu > 0)
-			keep = fmax(0, 1 - fr.mu * j / (st / den));
-		if (fr.viscous > 0)
-			keep *= exp(-fr.viscous * dt);
-		for (k = 0; k < nvert; k++) {
-			double im = c->inv_mass[vert[k]];
-
-			if (im > 0)
-				v3_store(c->v1 + 3 * vert[k], v3_madd(V1(c, vert[k]), u,
-				    -w[k] * im * (1 - keep) * st / den));
-		}
-	}
-	for (k = 0; k < nvert; k++) {
-		int v = vert[k];
-		double im = c->inv_mass[v];
-
-		if (im == 0)
-			continue;
+		v3_store(c->v1 + 3 * p, v[k]);
 		if (c->opt.position == POSITION_KEEP)
-			v3_store(c->x1 + 3 * v, X0(c, v));
+			v3_store(c->x1 + 3 * p, X0(c, p));
 		else if (c->opt.position == POSITION_Q)
-			v3_store(c->x1 + 3 * v, lerp(X0(c, v), X1(c, v), toi));
+			v3_store(c->x1 + 3 * p, lerp(X0(c, p), X1(c, p), toi));
 		else if (g1 < 0)
-			v3_store(c->x1 + 3 * v, clamp_box(c, v, v3_madd(X1(c, v), n,
-			    -w[k] * im * g1 / den)));
-		c->changed_next[v] = 1;
-		if (add_event(c, step, v, type, other, obstacle, q, w[k] > 0 ? n : v3_neg(n),
-		    w[k] > 0 ? vn_before[k] : -vn_before[k],
-		    w[k] > 0 ? v3_dot(V1(c, v), n) : -v3_dot(V1(c, v), n)) != 0)
+			v3_store(c->x1 + 3 * p, clamp_box(c, p, v3_madd(X1(c, p), n,
+			    -w[k] * im[k] * g1 / den)));
+		c->changed_next[p] = 1;
+		if (add_event(c, step, p, type, other, obstacle, q, v3_scale(n, sgn),
+		    sgn * v3_dot(v_before[k], n), sgn * v3_dot(v[k], n)) != 0)
 			return -1;
 	}
 	return 0;

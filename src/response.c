@@ -58,3 +58,40 @@ response_node_velocity(vec3 vd, vec3 n, vec3 vq, double e, const struct friction
 	/* eq. 16: v_D+ = v_D- - v_Dk'- + v_Qk' (with e) */
 	return v3_madd(vt, n, vn_after);
 }
+
+double
+response_shared(int nvert, const double *w, const double *inv_mass, vec3 *v, vec3 n,
+    double e, const struct friction *fr, double dt)
+{
+	double den = 0, vr, j, st;
+	vec3 rel = v3(0, 0, 0), vt;
+	int k;
+
+	for (k = 0; k < nvert; k++) {
+		den += w[k] * w[k] * inv_mass[k];
+		rel = v3_madd(rel, v[k], w[k]);
+	}
+	if (!(den > 0))
+		return -1;
+	vr = v3_dot(rel, n);
+	/* eq. 11 between the two sides: the relative normal velocity becomes
+	 * -e vr; each vertex takes its share of the impulse j */
+	j = vr < 0 ? -(1 + e) * vr / den : 0;
+	for (k = 0; k < nvert; k++)
+		v[k] = v3_madd(v[k], n, w[k] * inv_mass[k] * j);
+	/* eq. 17: the sliding velocity, less friction */
+	vt = v3_madd(rel, n, -vr);
+	st = v3_len(vt);
+	if (fr != NULL && st > 0 && (fr->mu > 0 || fr->viscous > 0)) {
+		double keep = 1;
+		vec3 u = v3_scale(vt, 1 / st);
+
+		if (fr->mu > 0)	/* the tangential impulse is at most mu j */
+			keep = fmax(0, 1 - fr->mu * j * den / st);
+		if (fr->viscous > 0)
+			keep *= exp(-fr->viscous * dt);
+		for (k = 0; k < nvert; k++)
+			v[k] = v3_madd(v[k], u, -w[k] * inv_mass[k] * (1 - keep) * st / den);
+	}
+	return j;
+}

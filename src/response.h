@@ -24,4 +24,21 @@ vec3 response_point_velocity(vec3 a, vec3 b, vec3 c, vec3 va, vec3 vb, vec3 vc, 
 vec3 response_node_velocity(vec3 vd, vec3 n, vec3 vq, double e, const struct friction *fr,
     double dt);
 
+/*
+ * The ccd response between two bodies of alike mass (two parts of the
+ * cloth), as a perfectly inelastic impact (with restitution e) shared by
+ * both sides: the contact is the point sum w[k] x[k] of nvert vertices,
+ * weights positive on one side and negative on the other (barycentric
+ * coordinates, or an edge's parameters), n the unit normal from the
+ * negative side to the positive one. The impulse along n that makes the
+ * relative normal velocity -e times what it was, if they approach, is
+ * shared by inverse mass (0: a vertex nothing can move) and weight, so
+ * that momentum is kept; Coulomb and viscous friction act on the relative
+ * sliding velocity the same way. v is updated in place. Returns the normal
+ * impulse per unit of relative velocity change (the j of the impact, >= 0),
+ * or -1 when no vertex can move.
+ */
+double response_shared(int nvert, const double *w, const double *inv_mass, vec3 *v, vec3 n,
+    double e, const struct friction *fr, double dt);
+
 #endif

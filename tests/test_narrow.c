@@ -175,6 +175,84 @@ test_rotating_triangle(void **state)
 	assert_double_equal(vq.z, v0.z, 1e-15);
 }
 
+/* The shared (ccd) response: a node of mass 1 falls at 1 m/s on the middle
+ * of a resting free triangle of three nodes of mass 1. */
+static void
+test_shared_impulse(void **state)
+{
+	const double w[4] = { 1, -1.0 / 3, -1.0 / 3, -1.0 / 3 }, im[4] = { 1, 1, 1, 1 };
+	const double fixed[4] = { 1, 0, 0, 0 };
+	vec3 n = v3(0, 1, 0), v[4];
+	double p_before, p_after, ke_before, ke_after, j;
+	int k;
+
+	(void)state;
+	for (k = 0; k < 4; k++)
+		v[k] = v3(0, 0, 0);
+	v[0] = v3(0, -1, 0);
+	p_before = v[0].y;
+	ke_before = 0.5;
+	j = response_shared(4, w, im, v, n, 0, NULL, 1e-3);
+	/* den = 1 + 3/9, j = 1/den */
+	assert_double_equal(j, 0.75, 1e-15);
+	p_after = ke_after = 0;
+	for (k = 0; k < 4; k++) {
+		p_after += v[k].y;
+		ke_after += 0.5 * v3_dot(v[k], v[k]);
+		assert_double_equal(v[k].y, -0.25, 1e-15);	/* they move on together */
+		assert_double_equal(v[k].x, 0, 0);
+	}
+	assert_double_equal(p_after, p_before, 1e-15);	/* momentum kept */
+	/* the loss of a perfectly inelastic impact: 1/2 (1/den) vr^2 */
+	assert_double_equal(ke_before - ke_after, 0.5 * 0.75 * 1, 1e-15);
+
+	/* e = 1: the relative velocity reverses and no energy is lost */
+	for (k = 0; k < 4; k++)
+		v[k] = v3(0, 0, 0);
+	v[0] = v3(0, -1, 0);
+	response_shared(4, w, im, v, n, 1, NULL, 1e-3);
+	assert_double_equal(v[0].y - v[1].y, 1, 1e-15);
+	for (k = 0, ke_after = 0; k < 4; k++)
+		ke_after += 0.5 * v3_dot(v[k], v[k]);
+	assert_double_equal(ke_after, 0.5, 1e-15);
+
+	/* a triangle nothing can move (an obstacle mesh): eq. 12, the node
+	 * takes its normal velocity, 0; Coulomb mu = 0.5 takes mu |dv_n| = 0.5
+	 * off the sliding speed of 2 */
+	{
+		struct friction fr = { 0.5, 0 };
+
+		for (k = 0; k < 4; k++)
+			v[k] = v3(0, 0, 0);
+		v[0] = v3(2, -1, 0);
+		j = response_shared(4, w, fixed, v, n, 0, &fr, 1e-3);
+		assert_double_equal(j, 1, 1e-15);
+		assert_double_equal(v[0].y, 0, 1e-15);
+		assert_double_equal(v[0].x, 1.5, 1e-15);
+		assert_double_equal(v[1].x, 0, 0);
+		/* mu = 5 stops the sliding, and no more */
+		fr.mu = 5;
+		v[0] = v3(2, -1, 0);
+		response_shared(4, w, fixed, v, n, 0, &fr, 1e-3);
+		assert_double_equal(v[0].x, 0, 1e-15);
+	}
+
+	/* parting sides are left alone */
+	for (k = 0; k < 4; k++)
+		v[k] = v3(0, 0, 0);
+	v[0] = v3(0.3, 1, 0);
+	assert_double_equal(response_shared(4, w, im, v, n, 0, NULL, 1e-3), 0, 0);
+	assert_double_equal(v[0].y, 1, 0);
+	assert_double_equal(v[0].x, 0.3, 0);
+
+	/* nothing can move */
+	{
+		const double none[4] = { 0, 0, 0, 0 };
+
+		assert_double_equal(response_shared(4, w, none, v, n, 0, NULL, 1e-3), -1, 0);
+	}
+}
+
 int
 main(void)
 {
@@ -186,6 +264,7 @@ main(void)
 		cmocka_unit_test(test_inelastic_on_plane),
 		cmocka_unit_test(test_friction),
 		cmocka_unit_test(test_rotating_triangle),
+		cmocka_unit_test(test_shared_impulse),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

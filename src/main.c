@@ -13,6 +13,8 @@ usage(FILE *f)
 	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
 	    "                 [--final-obj FILE] SCENE\n"
 	    "       drape check [--every N] SCENE|OBJ...\n"
+	    "       drape snapshot [--step N] [--view front|side|top|iso] [--size WxH]\n"
+	    "                 [--perspective] SCENE\n"
 	    "       drape ccd [--method seed|ccd] [--inside angle|crossing] [--kind vf|ee] FILE.csv...\n"
 	    "\n"
 	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
@@ -41,6 +43,8 @@ main(int argc, char **argv)
 		return cmd_ccd(argc - 1, argv + 1);
 	if (strcmp(argv[1], "check") == 0)
 		return cmd_check(argc - 1, argv + 1);
+	if (strcmp(argv[1], "snapshot") == 0)
+		return cmd_snapshot(argc - 1, argv + 1);
 	if (argv[1][0] == '-') {
 		fprintf(stderr, "drape: unknown option '%s'\n", argv[1]);
 		usage(stderr);

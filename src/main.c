@@ -11,7 +11,8 @@ usage(FILE *f)
 	fputs("usage: drape [--help | --version]\n"
 	    "       drape SCENE\n"
 	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
-	    "                 [--final-obj FILE] SCENE\n"
+	    "                 [--final-obj FILE] [-C | --no-color] [-d | --delay TENTHS]\n"
+	    "                 [--paused] SCENE\n"
 	    "       drape check [--every N] SCENE|OBJ...\n"
 	    "       drape snapshot [--step N] [--view front|side|top|iso] [--size WxH]\n"
 	    "                 [--perspective] SCENE\n"
@@ -50,7 +51,6 @@ main(int argc, char **argv)
 		usage(stderr);
 		return EXIT_USAGE;
 	}
-	/* `drape SCENE`: the interactive front end is not built yet, so the
-	 * scene runs headless, as `drape run` would. */
+	/* `drape SCENE` is `drape run SCENE`: the TUI on a terminal. */
 	return cmd_run(argc, argv);
 }

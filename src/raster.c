@@ -176,7 +176,7 @@ void
 raster_triangle(struct raster *r, const struct camera *cam, vec3 a, vec3 b, vec3 c,
     enum cell_kind kind)
 {
-	double x[3], y[3], z[3], area, lo_x, hi_x, lo_y, hi_y;
+	double x[3], y[3], z[3], area, longest, lo_x, hi_x, lo_y, hi_y;
 	vec3 n = v3_cross(v3_sub(camera_view(cam, b), camera_view(cam, a)),
 	    v3_sub(camera_view(cam, c), camera_view(cam, a)));
 	char ch = kind == CELL_FLOOR ? ' ' : shade(n);
@@ -189,9 +189,11 @@ raster_triangle(struct raster *r, const struct camera *cam, vec3 a, vec3 b, vec3
 	area = edge(x[0], y[0], x[1], y[1], x[2], y[2]);
 	if (!isfinite(area))
 		return;
-	if (fabs(area) < 0.5) {
-		/* thinner than a cell: seen edge-on, it would vanish; its edges
-		 * show as a line */
+	longest = fmax(hypot(x[1] - x[0], y[1] - y[0]),
+	    fmax(hypot(x[2] - x[1], y[2] - y[1]), hypot(x[0] - x[2], y[0] - y[2])));
+	if (fabs(area) < 0.1 * longest * longest) {
+		/* thin (nearly edge-on): it could vanish, so
+		 * its edges show as a line too */
 		if (kind != CELL_FLOOR)
 			for (i = 0; i < 3; i++)
 				edge_line(r, x[i], y[i], z[i], x[(i + 1) % 3], y[(i + 1) % 3],

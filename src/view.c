@@ -6,8 +6,7 @@
 #define SPHERE_SLICES 16
 #define SPHERE_STACKS 8
 #define DISC_SEGMENTS 24
-#define FLOOR_LINES 9		/* grid lines each way */
-#define FLOOR_SAMPLES 96	/* points along each line */
+#define FLOOR_LINES 7		/* grid lines each way */
 
 static void
 quad(struct raster *r, const struct camera *cam, vec3 a, vec3 b, vec3 c, vec3 d,
@@ -88,22 +87,25 @@ static void
 draw_floor(struct raster *r, const struct camera *cam, vec3 point, vec3 n)
 {
 	double half = 1.5 * cam->radius, step = 2 * half / (FLOOR_LINES - 1);
+	/* the dots sit a little under the surface, so that a cloth lying on
+	 * the floor covers them */
+	double sink = 2e-3 * cam->radius, slack = 0.3 * sink;
 	vec3 u, w, c = v3_madd(cam->target, n, -v3_dot(v3_sub(cam->target, point), n));
-	int i, k;
+	vec3 under = v3_madd(c, n, -sink);
+	int i, k, samples = 2 * (r->w + 2 * r->h);
 
 	tangents(n, &u, &w);
-	quad(r, cam, v3_madd(v3_madd(c, u, -half), w, -half), v3_madd(v3_madd(c, u, half), w, -half),
-	    v3_madd(v3_madd(c, u, half), w, half), v3_madd(v3_madd(c, u, -half), w, half),
-	    CELL_FLOOR);
+	quad(r, cam, v3_madd(v3_madd(under, u, -half), w, -half),
+	    v3_madd(v3_madd(under, u, half), w, -half), v3_madd(v3_madd(under, u, half), w, half),
+	    v3_madd(v3_madd(under, u, -half), w, half), CELL_FLOOR);
 	for (i = 0; i < FLOOR_LINES; i++) {
-		for (k = 0; k < FLOOR_SAMPLES; k++) {
-			double a = -half + i * step, b = -half + 2 * half * k / (FLOOR_SAMPLES - 1);
-			double slack = 1e-3 * cam->radius;
+		for (k = 0; k < samples; k++) {
+			double a = -half + i * step, b = -half + 2 * half * k / (samples - 1);
 
-			raster_point(r, cam, v3_madd(v3_madd(c, u, a), w, b), '.', CELL_FLOOR, slack,
-			    false);
-			raster_point(r, cam, v3_madd(v3_madd(c, u, b), w, a), '.', CELL_FLOOR, slack,
-			    false);
+			raster_point(r, cam, v3_madd(v3_madd(under, u, a), w, b), '.', CELL_FLOOR,
+			    slack, false);
+			raster_point(r, cam, v3_madd(v3_madd(under, u, b), w, a), '.', CELL_FLOOR,
+			    slack, false);
 		}
 	}
 }

@@ -80,9 +80,9 @@ screen_status(char *buf, int width, const struct status_info *si)
 		    s->step, s->dt, s->integrator, energy_total(&s->energy), speed,
 		    si->steps_per_frame, si->mode, si->recording);
 	else	/* 80 columns: the same facts, tighter */
-		snprintf(buf, (size_t)width + 1, "t %.4fs step %ld dt %.2gs %s E %.3eJ %s/%ld %s "
+		snprintf(buf, (size_t)width + 1, "t %.4fs step %ld dt %.2gs %s E %.3eJ %s real %s "
 		    "rec:%s", s->t, s->step, s->dt, s->integrator, energy_total(&s->energy), speed,
-		    si->steps_per_frame, si->mode, si->recording);
+		    si->mode, si->recording);
 }
 
 void
@@ -151,12 +151,13 @@ screen_node(struct text *t, const struct source_state *s, int node, const vec3 *
 	cloth_grid_ij(s->cl, node, &i, &j);
 	text_add(t, "node %d (i %d, j %d)%s", node, i, j,
 	    s->held != NULL && s->held[node] ? " held" : "");
-	text_add(t, "x m   %8.4f %8.4f %8.4f", x.x, x.y, x.z);
-	text_add(t, "v m/s %8.4f %8.4f %8.4f", v.x, v.y, v.z);
+	/* 30 columns each */
+	text_add(t, "x m  %8.4f%8.4f%8.4f", x.x, x.y, x.z);
+	text_add(t, "v m/s%8.4f%8.4f%8.4f", v.x, v.y, v.z);
 	if (f != NULL)
-		text_add(t, "f N %9.2e %9.2e %9.2e", f->x, f->y, f->z);
+		text_add(t, "f N%9.1e%9.1e%9.1e", f->x, f->y, f->z);
 	else
-		text_add(t, "f N   not known here");
+		text_add(t, "f N  not known here");
 	text_add(t, "events: %ld (latest first)", log->n > node ? log->count[node] : 0);
 	text_add(t, "%6s %3s %5s %6s %6s", "step", "typ", "with", "vn in", "out");
 	for (k = 0; k < EVLOG_PER_NODE; k++) {

@@ -227,10 +227,12 @@ key(struct tui *ui, int ch)
 	case '=':
 		if (ui->spf < STEPS_PER_FRAME_MAX)
 			ui->spf *= 2;
+		say(ui, "at most %ld steps a frame", ui->spf);
 		break;
 	case '-':
 		if (ui->spf > 1)
 			ui->spf /= 2;
+		say(ui, "at most %ld steps a frame", ui->spf);
 		break;
 	case KEY_LEFT:
 	case 'h':
@@ -406,7 +408,7 @@ draw(struct tui *ui)
 		draw_text(&t, (struct rect){ 2, 1, cols - 2, rows - 1 }, false);
 	} else {
 		si.s = &s;
-		si.speed = ui->running ? ui->speed : 0;
+		si.speed = ui->speed;	/* the latest measured, kept while paused */
 		si.mode = ui->res->blown_up ? "blown up" : ui->ended ? "end" :
 		    ui->running ? "running" : "paused";
 		si.steps_per_frame = ui->spf;

@@ -94,6 +94,8 @@ session() {
 	wait_for 'drape: keys' || return
 	tm send-keys -t t x
 	wait_for "step $s1 " || return
+	tm send-keys -t t / 1 2 Enter
+	wait_for 'node 12 \(i 2, j 1\)' || return
 	# a resize redraws to the new size
 	tm resize-window -t t -x "$cols2" -y "$rows2"
 	for i in $(seq 100); do
@@ -115,6 +117,27 @@ session() {
 
 session 80 24 100 30 30 30
 session 200 60 120 40 48 40
+
+# colour unless -C or NO_COLOR; SIGTERM restores the terminal
+colour_run() {
+	tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "$1 sh -c 'echo \$\$ >$tmp/pid; exec $DRAPE run $2 --paused $tmp/fall.scene'; echo EXIT=\$?" Enter
+	wait_for 'step 0 .*paused' || return
+	tm capture-pane -e -p -t t >"$tmp/escapes"
+	kill -TERM "$(cat "$tmp/pid")"
+	wait_for 'EXIT=[0-9]+' || return
+	grep -q 'EXIT=143' "$tmp/screen" || fail "SIGTERM: not exit 143"
+	grep -Eq 'collisions|step [0-9]' "$tmp/screen" && fail "SIGTERM: the TUI is still on the screen"
+	tm kill-session -t t
+}
+echo "== colour, SIGTERM"
+colour_run "" ""
+grep -q $'\e\[3[1-6]m' "$tmp/escapes" || fail "no colour by default"
+colour_run "" "-C"
+grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with -C"
+colour_run "env NO_COLOR=1" ""
+grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with NO_COLOR"
 
 # not on a terminal
 "$DRAPE" run --until 1ms "$tmp/fall.scene" </dev/null >"$tmp/out" 2>"$tmp/err"

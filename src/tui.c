@@ -83,8 +83,10 @@ step_once(struct tui *ui)
 	size_t nev;
 	const struct contact_event *ev;
 
-	if (ui->ended || ui->res->blown_up)
+	if (ui->ended || ui->res->blown_up) {
+		say(ui, "%s", ui->ended ? "end of the run" : ui->res->why);
 		return false;
+	}
 	switch (ui->src->step(ui->src->ctx, ui->res->why, sizeof ui->res->why)) {
 	case SOURCE_STEPPED:
 		ev = ui->src->events(ui->src->ctx, &nev);

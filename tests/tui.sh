@@ -43,6 +43,9 @@ position = slide
 SCENE
 
 fails=0
+# a session that outlives the tested ones, so that the server does not
+# exit (and race the next new-session) when one ends
+tm new-session -d -s keep -x 20 -y 5 "sleep 600" || { echo "tmux cannot start"; exit 1; }
 fail() { echo "FAIL: $*"; echo "---- screen:"; cat "$tmp/screen"; echo "----"; fails=$((fails + 1)); }
 capture() { tm capture-pane -p -t t >"$tmp/screen"; }
 
@@ -96,6 +99,14 @@ session() {
 	wait_for "step $s1 " || return
 	tm send-keys -t t / 1 2 Enter
 	wait_for 'node 12 \(i 2, j 1\)' || return
+	# e runs to its first event (it lands on the floor) and lists it
+	tm send-keys -t t e
+	wait_for 'node 12: an event at step [0-9]+' || return
+	grep -Eq '^ *[0-9]+ obs +ob0 +-[0-9.]+ [-+]0' <(cut -c $((cols - side + 1))- "$tmp/screen") ||
+		fail "node 12's event is not in the inspector"
+	tm send-keys -t t x	# any key clears the message
+	wait_for '^\? help' || return
+	s1=$(step_of)
 	# a resize redraws to the new size
 	tm resize-window -t t -x "$cols2" -y "$rows2"
 	for i in $(seq 100); do

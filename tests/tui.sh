@@ -136,7 +136,9 @@ colour_run() {
 	tm send-keys -t t "$1 sh -c 'echo \$\$ >$tmp/pid; exec $DRAPE run $2 --paused $tmp/fall.scene'; echo EXIT=\$?" Enter
 	wait_for 'step 0 .*paused' || return
 	tm capture-pane -e -p -t t >"$tmp/escapes"
-	kill -TERM "$(cat "$tmp/pid")"
+	pid=$(cat "$tmp/pid")
+	[ "$(cat "/proc/$pid/comm" 2>/dev/null)" = drape ] || { fail "no drape process at pid '$pid'"; return; }
+	kill -TERM "$pid"
 	wait_for 'EXIT=[0-9]+' || return
 	grep -q 'EXIT=143' "$tmp/screen" || fail "SIGTERM: not exit 143"
 	grep -Eq 'collisions|step [0-9]' "$tmp/screen" && fail "SIGTERM: the TUI is still on the screen"

@@ -47,6 +47,8 @@ struct source {
 	void (*state)(void *ctx, struct source_state *s);
 	/* why gets a message on SOURCE_FAILED */
 	enum source_step (*step)(void *ctx, char *why, size_t len);
+	/* Nothing after the current state: the next step would be SOURCE_END. */
+	bool (*done)(void *ctx);
 	const struct contact_event *(*events)(void *ctx, size_t *n);
 	void (*stats)(void *ctx, struct source_stats *s);
 	/* The net force on a node at the current state; false when the source

@@ -44,6 +44,14 @@ live_step(void *ctx, char *why, size_t len)
 	return SOURCE_STEPPED;
 }
 
+static bool
+live_done(void *ctx)
+{
+	struct source_live *lv = ctx;
+
+	return stepper_done(lv->st);
+}
+
 static const struct contact_event *
 live_events(void *ctx, size_t *n)
 {
@@ -97,6 +105,7 @@ source_live(struct source *src, struct source_live *lv, struct stepper *st)
 	src->ctx = lv;
 	src->state = live_state;
 	src->step = live_step;
+	src->done = live_done;
 	src->events = live_events;
 	src->stats = live_stats;
 	src->force = live_force;

@@ -91,6 +91,11 @@ step_once(struct tui *ui)
 	case SOURCE_STEPPED:
 		ev = ui->src->events(ui->src->ctx, &nev);
 		evlog_add(&ui->log, ev, nev);
+		if (ui->src->done(ui->src->ctx)) {
+			ui->ended = true;
+			ui->running = false;
+			say(ui, "end of the run");
+		}
 		return true;
 	case SOURCE_END:
 		ui->ended = true;

@@ -12,8 +12,13 @@ command -v tmux >/dev/null 2>&1 || { echo "tmux not found: skipped"; exit 77; }
 tmp=$(mktemp -d /tmp/drape-tui-XXXXXX) || exit 1
 sock="drape-test-$$"
 tm() { tmux -L "$sock" -f /dev/null "$@"; }
-cleanup() { tm kill-server >/dev/null 2>&1; rm -rf "$tmp"; }
+cleanup() {
+	tm kill-server >/dev/null 2>&1
+	rm -f "${TMUX_TMPDIR:-/tmp}/tmux-$(id -u)/$sock"
+	rm -rf "$tmp"
+}
 trap cleanup EXIT
+trap 'exit 1' INT TERM HUP PIPE
 
 # a 10 x 10 cloth falling on a plane, in self-contact
 cat >"$tmp/fall.scene" <<'SCENE'

@@ -16,6 +16,7 @@ enum {
 int cmd_run(int argc, char **argv);
 int cmd_ccd(int argc, char **argv);
 int cmd_check(int argc, char **argv);
+int cmd_snapshot(int argc, char **argv);
 void usage(FILE *f);
 
 #endif

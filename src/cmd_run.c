@@ -1,8 +1,10 @@
-/* cmd_run.c: `drape run`: a headless run with progress and a summary. */
+/* cmd_run.c: `drape run` and `drape SCENE`: the TUI on a live run when on a
+ * terminal, else a headless run with progress and a summary. */
 #include <getopt.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -11,7 +13,9 @@
 #include "obj.h"
 #include "scene.h"
 #include "shadow.h"
+#include "source.h"
 #include "stepper.h"
+#include "tui.h"
 #include "units.h"
 
 #define DRAPE_RASTER 0.5e-3	/* m: the shadow's cells, 1/600 of a 30 cm specimen */
@@ -173,6 +177,47 @@ summary(const struct stepper *st, double wall, const struct hash_totals *ht)
 }
 
 static int
+write_final(const struct stepper *st, const char *path)
+{
+	struct drape_err err;
+
+	if (path == NULL)
+		return EXIT_OK;
+	if (obj_write(path, stepper_x(st), st->cl.n, st->cl.tri, st->cl.ntri, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		return EXIT_RUNTIME;
+	}
+	return EXIT_OK;
+}
+
+/* The front end on the live run; its messages once the terminal is back. */
+static int
+run_tui(struct stepper *st, const struct tui_opts *opt)
+{
+	struct source src;
+	struct source_live lv;
+	struct tui_result res;
+
+	source_live(&src, &lv, st);
+	tui_run(&src, opt, &res);
+	source_live_free(&lv);
+	switch (res.end) {
+	case TUI_ERROR:
+		fprintf(stderr, "drape: %s\n", res.why);
+		return EXIT_RUNTIME;
+	case TUI_SIGNAL:
+		return 128 + res.signo;
+	case TUI_QUIT:
+		break;
+	}
+	if (res.blown_up) {
+		fprintf(stderr, "drape: %s: %s\n", st->sc->path, res.why);
+		return EXIT_BLOWUP;
+	}
+	return EXIT_OK;
+}
+
+static int
 bad_option(const char *opt, const char *val, const char *what)
 {
 	fprintf(stderr, "drape run: %s '%s': expected %s\n", opt, val, what);
@@ -186,7 +231,10 @@ cmd_run(int argc, char **argv)
 		{ "headless", no_argument, NULL, 'H' },
 		{ "until", required_argument, NULL, 'u' },
 		{ "integrator", required_argument, NULL, 'i' },
-		{ "dt", required_argument, NULL, 'd' },
+		{ "dt", required_argument, NULL, 'T' },
+		{ "no-color", no_argument, NULL, 'C' },
+		{ "delay", required_argument, NULL, 'd' },
+		{ "paused", no_argument, NULL, 'p' },
 		{ "final-obj", required_argument, NULL, 'o' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
@@ -194,6 +242,8 @@ cmd_run(int argc, char **argv)
 	const char *final_obj = NULL;
 	double until = -1, dt = -1;
 	int integ = -1, c, tty = isatty(STDERR_FILENO), rc = EXIT_OK;
+	bool headless = false;
+	struct tui_opts topt = { .color = true, .delay = 1, .paused = false };
 	struct scene sc;
 	struct stepper st;
 	struct drape_err err;
@@ -204,10 +254,27 @@ cmd_run(int argc, char **argv)
 
 	optind = 1;
 	opterr = 0;
-	while ((c = getopt_long(argc, argv, "+h", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "+hCd:", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'H':
-			break;	/* the only mode until the front end lands */
+			headless = true;
+			break;
+		case 'C':
+			topt.color = false;
+			break;
+		case 'd': {
+			char *end;
+			long d = strtol(optarg, &end, 10);
+
+			if (end == optarg || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
+				return bad_option("--delay", optarg,
+				    "tenths of a second, a whole number from 1 to 100");
+			topt.delay = (int)d;
+			break;
+		}
+		case 'p':
+			topt.paused = true;
+			break;
 		case 'u':
 			if (units_parse(optarg, DIM_TIME, &until, 1, why, sizeof why) != 0 ||
 			    !(until > 0))
@@ -222,7 +289,7 @@ cmd_run(int argc, char **argv)
 			integ = (int)k;
 			break;
 		}
-		case 'd':
+		case 'T':
 			if (strcmp(optarg, "auto") == 0)
 				dt = 0;
 			else if (units_parse(optarg, DIM_TIME, &dt, 1, why, sizeof why) != 0 ||
@@ -266,6 +333,15 @@ cmd_run(int argc, char **argv)
 		return EXIT_USAGE;
 	}
 
+	if (!headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
+		fprintf(stderr, "drape: not a terminal: running headless\n");
+		headless = true;
+	}
+	if (!headless) {
+		rc = run_tui(&st, &topt);
+		goto done;
+	}
+
 	memset(&ht, 0, sizeof ht);
 	t0 = last = now();
 	while (!stepper_done(&st)) {
@@ -290,11 +366,9 @@ cmd_run(int argc, char **argv)
 	if (tty)
 		fputs("\r\033[K", stderr);
 	summary(&st, now() - t0, &ht);
-	if (rc == EXIT_OK && final_obj != NULL &&
-	    obj_write(final_obj, stepper_x(&st), st.cl.n, st.cl.tri, st.cl.ntri, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		rc = EXIT_RUNTIME;
-	}
+done:
+	if (rc == EXIT_OK)
+		rc = write_final(&st, final_obj);
 	if (fflush(stdout) != 0 && rc == EXIT_OK) {
 		perror("drape: stdout");
 		rc = EXIT_RUNTIME;

@@ -11,8 +11,11 @@ usage(FILE *f)
 	fputs("usage: drape [--help | --version]\n"
 	    "       drape SCENE\n"
 	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
-	    "                 [--final-obj FILE] SCENE\n"
+	    "                 [--final-obj FILE] [-C | --no-color] [-d | --delay TENTHS]\n"
+	    "                 [--paused] SCENE\n"
 	    "       drape check [--every N] SCENE|OBJ...\n"
+	    "       drape snapshot [--step N] [--view front|side|top|iso] [--size WxH]\n"
+	    "                 [--perspective] SCENE\n"
 	    "       drape ccd [--method seed|ccd] [--inside angle|crossing] [--kind vf|ee] FILE.csv...\n"
 	    "\n"
 	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
@@ -41,12 +44,13 @@ main(int argc, char **argv)
 		return cmd_ccd(argc - 1, argv + 1);
 	if (strcmp(argv[1], "check") == 0)
 		return cmd_check(argc - 1, argv + 1);
+	if (strcmp(argv[1], "snapshot") == 0)
+		return cmd_snapshot(argc - 1, argv + 1);
 	if (argv[1][0] == '-') {
 		fprintf(stderr, "drape: unknown option '%s'\n", argv[1]);
 		usage(stderr);
 		return EXIT_USAGE;
 	}
-	/* `drape SCENE`: the interactive front end is not built yet, so the
-	 * scene runs headless, as `drape run` would. */
+	/* `drape SCENE` is `drape run SCENE`: the TUI on a terminal. */
 	return cmd_run(argc, argv);
 }

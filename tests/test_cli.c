@@ -62,6 +62,22 @@ help_and_version(void **state)
 	assert_int_equal(r.status, 2);
 	drape(&r, "run --dt 0 " TOP_SRCDIR "/scenes/hanging.scene");
 	assert_int_equal(r.status, 2);
+	drape(&r, "run --delay 0 " TOP_SRCDIR "/scenes/hanging.scene");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--delay '0': expected tenths of a second"));
+	drape(&r, "run -d x " TOP_SRCDIR "/scenes/hanging.scene");
+	assert_int_equal(r.status, 2);
+	drape(&r, "run -d");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "option '-d' needs a value"));
+	/* not on a terminal: headless, and it says so */
+	drape(&r, "run -C --paused -d 5 --until 1ms " TOP_SRCDIR "/scenes/hanging.scene");
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "not a terminal: running headless"));
+	assert_non_null(strstr(r.out, "state hash"));
+	drape(&r, "run --headless --until 1ms " TOP_SRCDIR "/scenes/hanging.scene");
+	assert_int_equal(r.status, 0);
+	assert_null(strstr(r.err, "not a terminal"));
 	drape(&r, "run " TOP_SRCDIR "/scenes/no-such.scene");
 	assert_int_equal(r.status, 2);
 	assert_non_null(strstr(r.err, "no-such.scene: cannot open"));

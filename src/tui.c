@@ -1,0 +1,578 @@
+/* tui.c: the ncurses front end: one werase and one doupdate per frame,
+ * redraws capped by the delay, ASCII only, colour optional. */
+#include <curses.h>
+#include <math.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "evlog.h"
+#include "raster.h"
+#include "screen.h"
+#include "tui.h"
+#include "view.h"
+
+#define STEPS_PER_FRAME_MAX (1L << 16)
+#define ROTATE_STEP (15 * V3_PI / 180)
+#define ZOOM_STEP 1.25
+#define PAN_STEP 0.1		/* of the framed radius */
+#define EVENT_SEEK_WALL 3.0	/* s: how long `e` may run looking for an event */
+#define BUSY_FRACTION 0.8	/* of a frame spent stepping */
+
+/* The one piece of global state: the signal that asks the TUI to end,
+ * set by the handler, read by the loop. */
+static volatile sig_atomic_t quit_signal;
+
+static void
+on_signal(int signo)
+{
+	quit_signal = signo;
+}
+
+enum colour_pair { PAIR_CLOTH = 1, PAIR_SOLID, PAIR_FLOOR, PAIR_CONTACT, PAIR_SELECTED };
+
+struct tui {
+	struct source *src;
+	struct tui_opts opt;
+	bool colour;
+	struct camera cam;
+	int preset;
+	struct raster r;
+	struct evlog log;
+	int selected;
+	enum panel focus;
+	bool running, ended, help, quit, dirty;
+	long spf;		/* steps per frame, at most */
+	double speed;		/* simulated over wall time */
+	double mark_wall, mark_t;
+	bool prompt;
+	char input[16];
+	char msg[300];
+	struct tui_result *res;
+};
+
+static double
+now(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void
+say(struct tui *ui, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+static void
+say(struct tui *ui, const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	vsnprintf(ui->msg, sizeof ui->msg, fmt, ap);
+	va_end(ap);
+}
+
+/* One step; false when there is none (the end, or a blow-up). */
+static bool
+step_once(struct tui *ui)
+{
+	size_t nev;
+	const struct contact_event *ev;
+
+	if (ui->ended || ui->res->blown_up) {
+		say(ui, "%s", ui->ended ? "end of the run" : ui->res->why);
+		return false;
+	}
+	switch (ui->src->step(ui->src->ctx, ui->res->why, sizeof ui->res->why)) {
+	case SOURCE_STEPPED:
+		ev = ui->src->events(ui->src->ctx, &nev);
+		evlog_add(&ui->log, ev, nev);
+		if (ui->src->done(ui->src->ctx)) {
+			ui->ended = true;
+			ui->running = false;
+			say(ui, "end of the run");
+		}
+		return true;
+	case SOURCE_END:
+		ui->ended = true;
+		ui->running = false;
+		say(ui, "end of the run");
+		return false;
+	case SOURCE_FAILED:
+		ui->res->blown_up = true;
+		ui->running = false;
+		say(ui, "%s", ui->res->why);
+		return false;
+	}
+	return false;
+}
+
+/* As many steps as spf and the frame's time allow. */
+static void
+run_frame(struct tui *ui, double budget)
+{
+	double start = now(), t;
+	long k;
+	struct source_state s;
+
+	for (k = 0; k < ui->spf && ui->running; k++) {
+		if (!step_once(ui))
+			break;
+		if (now() - start > budget || quit_signal)
+			break;
+	}
+	t = now();
+	ui->src->state(ui->src->ctx, &s);
+	if (t - ui->mark_wall >= 0.5) {
+		ui->speed = (s.t - ui->mark_t) / (t - ui->mark_wall);
+		ui->mark_wall = t;
+		ui->mark_t = s.t;
+	}
+}
+
+/* `e`: steps until the selected node has a new event. */
+static void
+seek_event(struct tui *ui)
+{
+	long before = ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
+	double start = now();
+	long steps = 0;
+	struct source_state s;
+
+	if (ui->selected < 0 || ui->selected >= ui->log.n)
+		return;
+	ui->running = false;
+	while (ui->log.count[ui->selected] == before && !quit_signal &&
+	    now() - start < EVENT_SEEK_WALL && step_once(ui))
+		steps++;
+	ui->src->state(ui->src->ctx, &s);
+	if (ui->log.count[ui->selected] > before)
+		say(ui, "node %d: an event at step %ld (%ld steps on)", ui->selected,
+		    evlog_get(&ui->log, ui->selected, 0)->step, steps);
+	else if (!ui->ended && !ui->res->blown_up)
+		say(ui, "node %d: no event in %ld steps (to step %ld); e again goes on",
+		    ui->selected, steps, s.step);
+}
+
+static void
+reset_camera(struct tui *ui)
+{
+	struct source_state s;
+	bool persp = ui->cam.perspective;
+	vec3 target;
+	double radius;
+
+	ui->src->state(ui->src->ctx, &s);
+	view_frame(s.sc, s.cl->x0, s.cl->n, &target, &radius);
+	camera_preset(&ui->cam, (enum view_preset)ui->preset, target, radius);
+	ui->cam.perspective = persp;
+}
+
+static void
+prompt_key(struct tui *ui, int ch)
+{
+	size_t len = strlen(ui->input);
+	struct source_state s;
+
+	if (ch == 27) {
+		ui->prompt = false;
+		ui->msg[0] = '\0';
+	} else if (ch == KEY_BACKSPACE || ch == 127 || ch == 8) {
+		if (len > 0)
+			ui->input[len - 1] = '\0';
+	} else if (ch >= '0' && ch <= '9' && len + 1 < sizeof ui->input) {
+		ui->input[len] = (char)ch;
+		ui->input[len + 1] = '\0';
+	} else if (ch == '\n' || ch == '\r' || ch == KEY_ENTER) {
+		long id = strtol(ui->input, NULL, 10);
+
+		ui->src->state(ui->src->ctx, &s);
+		ui->prompt = false;
+		if (len > 0 && id >= 0 && id < s.cl->n) {
+			ui->selected = (int)id;
+			ui->msg[0] = '\0';
+		} else {
+			say(ui, "no node '%s': nodes are 0 to %d", ui->input, s.cl->n - 1);
+		}
+	}
+}
+
+static void
+key(struct tui *ui, int ch)
+{
+	struct source_state s;
+
+	if (ui->prompt) {
+		prompt_key(ui, ch);
+		return;
+	}
+	if (ui->help) {
+		ui->help = false;
+		return;
+	}
+	ui->msg[0] = '\0';	/* a message lasts until the next key */
+	ui->src->state(ui->src->ctx, &s);
+	switch (ch) {
+	case 'q':
+		ui->quit = true;
+		break;
+	case ' ':
+		ui->running = !ui->running && !ui->ended && !ui->res->blown_up;
+		ui->mark_wall = now();
+		ui->mark_t = s.t;
+		break;
+	case 'n':
+	case '.':
+		ui->running = false;
+		step_once(ui);
+		break;
+	case '+':
+	case '=':
+		if (ui->spf < STEPS_PER_FRAME_MAX)
+			ui->spf *= 2;
+		say(ui, "at most %ld steps a frame", ui->spf);
+		break;
+	case '-':
+		if (ui->spf > 1)
+			ui->spf /= 2;
+		say(ui, "at most %ld steps a frame", ui->spf);
+		break;
+	case KEY_LEFT:
+	case 'h':
+		ui->cam.yaw -= ROTATE_STEP;
+		break;
+	case KEY_RIGHT:
+	case 'l':
+		ui->cam.yaw += ROTATE_STEP;
+		break;
+	case KEY_UP:
+	case 'k':
+		ui->cam.pitch = fmin(ui->cam.pitch + ROTATE_STEP, V3_PI / 2);
+		break;
+	case KEY_DOWN:
+	case 'j':
+		ui->cam.pitch = fmax(ui->cam.pitch - ROTATE_STEP, -V3_PI / 2);
+		break;
+	case 'H':
+		ui->cam.pan_x += PAN_STEP * ui->cam.radius / ui->cam.zoom;
+		break;
+	case 'L':
+		ui->cam.pan_x -= PAN_STEP * ui->cam.radius / ui->cam.zoom;
+		break;
+	case 'K':
+		ui->cam.pan_y -= PAN_STEP * ui->cam.radius / ui->cam.zoom;
+		break;
+	case 'J':
+		ui->cam.pan_y += PAN_STEP * ui->cam.radius / ui->cam.zoom;
+		break;
+	case 'z':
+		ui->cam.zoom *= ZOOM_STEP;
+		break;
+	case 'Z':
+		ui->cam.zoom /= ZOOM_STEP;
+		break;
+	case 'v':
+		ui->preset = (ui->preset + 1) % VIEW_NPRESETS;
+		reset_camera(ui);
+		say(ui, "view: %s", view_preset_name[ui->preset]);
+		break;
+	case 'o':
+		ui->cam.perspective = !ui->cam.perspective;
+		say(ui, "%s", ui->cam.perspective ? "perspective" : "orthographic");
+		break;
+	case '\t':
+		ui->focus = (enum panel)((ui->focus + 1) % PANEL_COUNT);
+		break;
+	case '[':
+		ui->selected = (ui->selected + s.cl->n - 1) % s.cl->n;
+		break;
+	case ']':
+		ui->selected = (ui->selected + 1) % s.cl->n;
+		break;
+	case '/':
+		ui->prompt = true;
+		ui->input[0] = '\0';
+		break;
+	case 'e':
+		seek_event(ui);
+		break;
+	case 'r':
+		say(ui, "recording: not yet (it comes with replay files)");
+		break;
+	case '?':
+	case KEY_F(1):
+		ui->help = true;
+		break;
+	case 12:	/* Ctrl-L */
+		clearok(curscr, TRUE);
+		break;
+	default:
+		break;
+	}
+}
+
+static chtype
+cell_attr(const struct tui *ui, int kind)
+{
+	static const short pair[] = { 0, PAIR_CLOTH, PAIR_SOLID, PAIR_FLOOR, PAIR_CONTACT,
+		PAIR_SELECTED };
+	chtype a = kind == CELL_SELECTED || kind == CELL_CONTACT ? A_BOLD : A_NORMAL;
+
+	if (ui->colour && kind > CELL_EMPTY && kind <= CELL_SELECTED)
+		a |= COLOR_PAIR(pair[kind]);
+	return a;
+}
+
+/* Text lines into a rectangle, the first bold (reversed when focused). */
+static void
+draw_text(const struct text *t, struct rect at, bool focused)
+{
+	int k;
+
+	for (k = 0; k < t->n && k < at.h; k++) {
+		chtype a = k == 0 ? (focused ? A_REVERSE : A_BOLD) : A_NORMAL;
+
+		attrset(a);
+		mvaddnstr(at.y + k, at.x, t->line[k], at.w);
+	}
+	attrset(A_NORMAL);
+}
+
+static int
+draw_view(struct tui *ui, const struct layout *lo, const struct source_state *s)
+{
+	size_t nev;
+	const struct contact_event *ev = ui->src->events(ui->src->ctx, &nev);
+	int i, j;
+
+	if ((ui->r.w != lo->view.w || ui->r.h != lo->view.h) &&
+	    raster_resize(&ui->r, lo->view.w, lo->view.h) != 0)
+		return -1;
+	view_draw(&ui->r, &ui->cam, s->sc, s->x, s->cl->n, s->cl->tri, s->cl->ntri,
+	    s->step > 0 ? ev : NULL, s->step > 0 ? nev : 0, ui->selected);
+	for (j = 0; j < ui->r.h; j++) {
+		move(lo->view.y + j, lo->view.x);
+		for (i = 0; i < ui->r.w; i++) {
+			size_t at = (size_t)j * (size_t)ui->r.w + (size_t)i;
+
+			addch((chtype)(unsigned char)ui->r.ch[at] | cell_attr(ui, ui->r.kind[at]));
+		}
+	}
+	return 0;
+}
+
+static void
+draw_panel(struct tui *ui, enum panel p, struct rect at, const struct source_state *s)
+{
+	struct text t;
+	struct source_stats ss;
+	vec3 f;
+
+	text_init(&t, at.w);
+	ui->src->stats(ui->src->ctx, &ss);
+	switch (p) {
+	case PANEL_COLLISIONS:
+		screen_collisions(&t, &ss);
+		break;
+	case PANEL_HASH:
+		screen_hash(&t, &ss);
+		break;
+	case PANEL_NODE:
+		screen_node(&t, s, ui->selected, ui->src->force(ui->src->ctx, ui->selected, &f) ?
+		    &f : NULL, &ui->log);
+		break;
+	case PANEL_COUNT:
+		break;
+	}
+	draw_text(&t, at, false);
+}
+
+static int
+draw(struct tui *ui)
+{
+	struct layout lo;
+	struct source_state s;
+	struct status_info si;
+	char line[TEXT_WIDTH * 2];
+	int rows, cols, k;
+
+	getmaxyx(stdscr, rows, cols);
+	werase(stdscr);
+	screen_layout(&lo, cols, rows, ui->focus);
+	ui->src->state(ui->src->ctx, &s);
+	if (lo.too_small) {
+		mvprintw(0, 0, "terminal too small: %dx%d, drape needs %dx%d", cols, rows,
+		    SCREEN_MIN_COLS, SCREEN_MIN_ROWS);
+	} else if (ui->help) {
+		struct text t;
+
+		text_init(&t, cols - 2);
+		screen_help(&t);
+		draw_text(&t, (struct rect){ 2, 1, cols - 2, rows - 1 }, false);
+	} else {
+		si.s = &s;
+		si.speed = ui->speed;	/* the latest measured, kept while paused */
+		si.mode = ui->res->blown_up ? "blown up" : ui->ended ? "end" :
+		    ui->running ? "running" : "paused";
+		si.steps_per_frame = ui->spf;
+		si.recording = "no";
+		screen_status(line, cols < (int)sizeof line - 1 ? cols : (int)sizeof line - 1, &si);
+		attrset(A_REVERSE);
+		mvhline(0, 0, ' ', cols);
+		mvaddnstr(0, 0, line, cols);
+		attrset(A_NORMAL);
+		if (draw_view(ui, &lo, &s) != 0)
+			return -1;
+		mvvline(lo.view.y, lo.view.x + lo.view.w, '|', lo.view.h);
+		if (!lo.stacked) {
+			move(lo.tabs_y, lo.side.x);
+			for (k = 0; k < PANEL_COUNT; k++) {
+				attrset(k == (int)ui->focus ? A_REVERSE : A_NORMAL);
+				printw("%s", panel_name[k]);
+				attrset(A_NORMAL);
+				addch(k + 1 < PANEL_COUNT ? ' ' : ' ');
+			}
+			attrset(A_DIM);
+			printw("(Tab)");
+			attrset(A_NORMAL);
+		}
+		for (k = 0; k < PANEL_COUNT; k++)
+			if (lo.panel[k].h > 0)
+				draw_panel(ui, (enum panel)k, lo.panel[k], &s);
+		if (ui->prompt)
+			snprintf(line, sizeof line, "go to node: %s_", ui->input);
+		else if (ui->msg[0] != '\0')
+			snprintf(line, sizeof line, "%s", ui->msg);
+		else
+			snprintf(line, sizeof line, "? help  q quit  space run/pause  n step  +/- speed  "
+			    "arrows rotate  z/Z zoom  v view  Tab panel  [/] node");
+		mvaddnstr(lo.keys.y, 0, line, cols);
+	}
+	wnoutrefresh(stdscr);
+	doupdate();
+	return 0;
+}
+
+static void
+colours(struct tui *ui)
+{
+	const char *no = getenv("NO_COLOR");
+
+	ui->colour = ui->opt.color && (no == NULL || no[0] == '\0') && has_colors();
+	if (!ui->colour || start_color() == ERR) {
+		ui->colour = false;
+		return;
+	}
+	use_default_colors();
+	init_pair(PAIR_CLOTH, COLOR_CYAN, -1);
+	init_pair(PAIR_SOLID, COLOR_YELLOW, -1);
+	init_pair(PAIR_FLOOR, COLOR_BLUE, -1);
+	init_pair(PAIR_CONTACT, COLOR_RED, -1);
+	init_pair(PAIR_SELECTED, COLOR_MAGENTA, -1);
+}
+
+static void
+loop(struct tui *ui)
+{
+	double period = 0.1 * ui->opt.delay, next = now();
+	int ch;
+
+	while (!ui->quit && !quit_signal) {
+		double t = now();
+
+		if (ui->running && t >= next) {
+			run_frame(ui, BUSY_FRACTION * period);
+			next = t + period;
+			ui->dirty = true;
+		}
+		if (ui->dirty) {
+			if (draw(ui) != 0) {
+				ui->res->end = TUI_ERROR;
+				snprintf(ui->res->why, sizeof ui->res->why, "out of memory for the view");
+				return;
+			}
+			ui->dirty = false;
+		}
+		t = now();
+		timeout(ui->running ? (int)fmax(0, ceil(1000 * (next - t))) : 250);
+		if ((ch = getch()) == ERR)
+			continue;
+		/* every key already typed, then one redraw */
+		do {
+			if (ch != KEY_RESIZE)
+				key(ui, ch);
+			timeout(0);
+		} while (!ui->quit && (ch = getch()) != ERR);
+		ui->dirty = true;
+	}
+}
+
+void
+tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
+{
+	static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
+	struct sigaction sa, old[3];
+	struct source_state s;
+	struct tui ui;
+	SCREEN *scr;
+	size_t k;
+
+	memset(res, 0, sizeof *res);
+	memset(&ui, 0, sizeof ui);
+	ui.src = src;
+	ui.opt = *opt;
+	ui.res = res;
+	ui.spf = 256;
+	ui.running = !opt->paused;
+	ui.preset = VIEW_ISO;
+	raster_init(&ui.r);
+	src->state(src->ctx, &s);
+	ui.selected = cloth_node(s.cl, s.cl->nu / 2, s.cl->nv / 2);
+	if (ui.selected < 0)
+		ui.selected = s.cl->n / 2;
+	if (evlog_init(&ui.log, s.cl->n) != 0) {
+		res->end = TUI_ERROR;
+		snprintf(res->why, sizeof res->why, "out of memory for the event log");
+		return;
+	}
+	reset_camera(&ui);
+	ui.mark_wall = now();
+	ui.mark_t = s.t;
+
+	/* ours before ncurses', which then leaves them alone */
+	quit_signal = 0;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	for (k = 0; k < 3; k++)
+		sigaction(sigs[k], &sa, &old[k]);
+	if ((scr = newterm(NULL, stdout, stdin)) == NULL) {
+		res->end = TUI_ERROR;
+		snprintf(res->why, sizeof res->why, "cannot use the terminal (TERM=%s)",
+		    getenv("TERM") != NULL ? getenv("TERM") : "");
+	} else {
+		cbreak();
+		noecho();
+		nonl();
+		keypad(stdscr, TRUE);
+		curs_set(0);
+		set_escdelay(25);
+		colours(&ui);
+		ui.dirty = true;
+		loop(&ui);
+		endwin();
+		delscreen(scr);
+		if (quit_signal && res->end != TUI_ERROR) {
+			res->end = TUI_SIGNAL;
+			res->signo = quit_signal;
+		}
+	}
+	for (k = 0; k < 3; k++)
+		sigaction(sigs[k], &old[k], NULL);
+	raster_free(&ui.r);
+	evlog_free(&ui.log);
+}

@@ -1,0 +1,37 @@
+/* tui.h: the ncurses front end on a source (a live run now; a replay
+ * later, see source.h): the view, the status line, the collision, hash and
+ * node panels and the help screen, driven by keys. The screen model is
+ * screen.h; this draws it and reads the keys. It restores the terminal
+ * (endwin) before it returns, whatever the reason. */
+#ifndef DRAPE_TUI_H
+#define DRAPE_TUI_H
+
+#include <stdbool.h>
+
+#include "source.h"
+
+#define TUI_DELAY_MAX 100	/* tenths of a second */
+
+struct tui_opts {
+	bool color;		/* colour if the terminal has it */
+	int delay;		/* between redraws, tenths of a second, 1..TUI_DELAY_MAX */
+	bool paused;		/* start paused */
+};
+
+enum tui_end {
+	TUI_QUIT,		/* q */
+	TUI_SIGNAL,		/* SIGINT, SIGTERM or SIGHUP: signo */
+	TUI_ERROR,		/* the terminal could not be used, or out of memory: why */
+};
+
+struct tui_result {
+	enum tui_end end;
+	int signo;
+	bool blown_up;		/* the run failed: why */
+	char why[400];
+};
+
+/* Runs the front end on stdin and stdout until it ends; fills *res. */
+void tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res);
+
+#endif

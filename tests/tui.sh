@@ -1,0 +1,168 @@
+#!/usr/bin/env bash
+# tui.sh: the TUI of the real binary in a tmux pane, at 80 x 24 and at
+# 200 x 60: the panels are there, n advances the step by exactly one, a
+# resize redraws to the new size, q leaves a clean shell prompt (exit 0);
+# and not on a terminal, drape falls back to headless and says so.
+# Skipped (77) without tmux. Waits poll the pane, with a timeout.
+set -u
+
+DRAPE=${DRAPE:-src/drape}
+command -v tmux >/dev/null 2>&1 || { echo "tmux not found: skipped"; exit 77; }
+
+tmp=$(mktemp -d /tmp/drape-tui-XXXXXX) || exit 1
+sock="drape-test-$$"
+tm() { tmux -L "$sock" -f /dev/null "$@"; }
+cleanup() {
+	tm kill-server >/dev/null 2>&1
+	rm -f "${TMUX_TMPDIR:-/tmp}/tmux-$(id -u)/$sock"
+	rm -rf "$tmp"
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM HUP PIPE
+
+# a 10 x 10 cloth falling on a plane, in self-contact
+cat >"$tmp/fall.scene" <<'SCENE'
+[simulation]
+duration = 1
+dt = auto
+[cloth]
+nodes = 10 10
+spacing = 10 mm
+origin = -0.045 0.03 -0.045
+orientation = +x +z
+weight = 100 g/m2
+thickness = 0.3 mm
+modulus_warp = 0.5 MPa
+modulus_weft = 0.5 MPa
+shear_modulus = 0
+bending_warp = 0
+bending_weft = 0
+damping = 1 /s
+[plane]
+point = 0 0 0
+[collision]
+self = on
+broad = grid
+narrow = ccd
+position = slide
+SCENE
+
+fails=0
+# a session that outlives the tested ones, so that the server does not
+# exit (and race the next new-session) when one ends
+tm new-session -d -s keep -x 20 -y 5 "sleep 600" || { echo "tmux cannot start"; exit 1; }
+fail() { echo "FAIL: $*"; echo "---- screen:"; cat "$tmp/screen"; echo "----"; fails=$((fails + 1)); }
+capture() { tm capture-pane -p -t t >"$tmp/screen"; }
+
+# wait_for REGEX: polls the pane for up to 15 s
+wait_for() {
+	local i
+	for i in $(seq 150); do
+		capture
+		grep -Eq -- "$1" "$tmp/screen" && return 0
+		sleep 0.1
+	done
+	fail "timed out waiting for '$1'"
+	return 1
+}
+
+step_of() { sed -n 's/.*step \([0-9][0-9]*\).*/\1/p' "$tmp/screen" | head -n 1; }
+
+# the character at column COL (from 0) of screen line ROW (from 1)
+char_at() { sed -n "$1p" "$tmp/screen" | cut -c "$(($2 + 1))"; }
+
+# session COLS ROWS RESIZE_COLS RESIZE_ROWS SIDE_WIDTH SIDE_WIDTH_AFTER
+session() {
+	local cols=$1 rows=$2 cols2=$3 rows2=$4 side=$5 side2=$6 s0 s1
+	echo "== $cols x $rows, resized to $cols2 x $rows2"
+	tm new-session -d -s t -x "$cols" -y "$rows" "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "'$DRAPE' run --paused '$tmp/fall.scene'; echo EXIT=\$?" Enter
+	wait_for 'step 0 .*paused' || return
+	for p in collisions hash node; do
+		grep -q "$p" "$tmp/screen" || fail "no $p panel at $cols x $rows"
+	done
+	grep -q 'vt pairs' "$tmp/screen" || fail "no collision counts"
+	[ "$(char_at 2 $((cols - side - 1)))" = "|" ] || fail "the view does not end at column $((cols - side - 1))"
+	if [ "$rows" -ge 40 ]; then
+		grep -q 'hash (latest fill)' "$tmp/screen" && grep -q 'node 55 (i 5, j 5)' "$tmp/screen" ||
+			fail "the panels are not all shown at $cols x $rows"
+	fi
+	s0=$(step_of)
+	tm send-keys -t t n
+	wait_for "step $((s0 + 1)) " || return
+	s1=$(step_of)
+	[ "$s1" -eq $((s0 + 1)) ] || fail "n went from step $s0 to $s1"
+	# the node inspector and the help screen
+	if [ "$rows" -lt 40 ]; then
+		tm send-keys -t t Tab Tab
+		wait_for 'node 55 \(i 5, j 5\)' || return
+	fi
+	tm send-keys -t t '?'
+	wait_for 'drape: keys' || return
+	tm send-keys -t t x
+	wait_for "step $s1 " || return
+	tm send-keys -t t / 1 2 Enter
+	wait_for 'node 12 \(i 2, j 1\)' || return
+	# e runs to its first event (it lands on the floor) and lists it
+	tm send-keys -t t e
+	wait_for 'node 12: an event at step [0-9]+' || return
+	grep -Eq '^ *[0-9]+ obs +ob0 +-[0-9.]+ [-+]0' <(cut -c $((cols - side + 1))- "$tmp/screen") ||
+		fail "node 12's event is not in the inspector"
+	tm send-keys -t t x	# any key clears the message
+	wait_for '^\? help' || return
+	s1=$(step_of)
+	# a resize redraws to the new size
+	tm resize-window -t t -x "$cols2" -y "$rows2"
+	for i in $(seq 100); do
+		capture
+		[ "$(wc -l <"$tmp/screen")" -eq "$rows2" ] &&
+			[ "$(char_at 2 $((cols2 - side2 - 1)))" = "|" ] && break
+		sleep 0.1
+	done
+	[ "$(char_at 2 $((cols2 - side2 - 1)))" = "|" ] || fail "no redraw to $cols2 x $rows2"
+	grep -Eq "^\? help" <(sed -n "${rows2}p" "$tmp/screen") || fail "no key line at the bottom"
+	# q: a clean prompt, exit 0
+	tm send-keys -t t q
+	wait_for 'EXIT=[0-9]+' || return
+	grep -q 'EXIT=0' "$tmp/screen" || fail "drape did not exit with 0"
+	grep -Eq 'collisions|step [0-9]' "$tmp/screen" && fail "the TUI is still on the screen"
+	grep -v '^$' "$tmp/screen" | tail -n 1 | grep -q '^prompt\$' || fail "no shell prompt after q"
+	tm kill-session -t t
+}
+
+session 80 24 100 30 30 30
+session 200 60 120 40 48 40
+
+# colour unless -C or NO_COLOR; SIGTERM restores the terminal
+colour_run() {
+	tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "$1 sh -c 'echo \$\$ >$tmp/pid; exec $DRAPE run $2 --paused $tmp/fall.scene'; echo EXIT=\$?" Enter
+	wait_for 'step 0 .*paused' || return
+	tm capture-pane -e -p -t t >"$tmp/escapes"
+	pid=$(cat "$tmp/pid")
+	[ "$(cat "/proc/$pid/comm" 2>/dev/null)" = drape ] || { fail "no drape process at pid '$pid'"; return; }
+	kill -TERM "$pid"
+	wait_for 'EXIT=[0-9]+' || return
+	grep -q 'EXIT=143' "$tmp/screen" || fail "SIGTERM: not exit 143"
+	grep -Eq 'collisions|step [0-9]' "$tmp/screen" && fail "SIGTERM: the TUI is still on the screen"
+	tm kill-session -t t
+}
+echo "== colour, SIGTERM"
+colour_run "" ""
+grep -q $'\e\[3[1-6]m' "$tmp/escapes" || fail "no colour by default"
+colour_run "" "-C"
+grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with -C"
+colour_run "env NO_COLOR=1" ""
+grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with NO_COLOR"
+
+# not on a terminal
+"$DRAPE" run --until 1ms "$tmp/fall.scene" </dev/null >"$tmp/out" 2>"$tmp/err"
+rc=$?
+cp "$tmp/err" "$tmp/screen"
+[ $rc -eq 0 ] && grep -q 'not a terminal: running headless' "$tmp/err" &&
+	grep -q 'state hash' "$tmp/out" || fail "no headless fall-back (status $rc)"
+
+[ $fails -eq 0 ] && echo "all passed"
+[ $fails -eq 0 ]

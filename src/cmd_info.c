@@ -38,7 +38,7 @@ cmd_info(int argc, char **argv)
 	struct replay r;
 	struct drape_err err;
 	const struct replay_meta *m;
-	uint64_t frame_bytes = 0;
+	uint64_t bytes[REPLAY_INDEX + 1] = { 0 };
 	size_t i, unreadable;
 	long nev;
 	double t_end, node_frames;
@@ -58,13 +58,15 @@ cmd_info(int argc, char **argv)
 	}
 	m = &r.meta;
 	for (i = 0; i < r.nchunks; i++)
-		if (r.chunk[i].kind == REPLAY_FRAMES)
-			frame_bytes += sizeof(struct replay_chunk_header) + r.chunk[i].comp_len;
+		if (r.chunk[i].kind <= REPLAY_INDEX)
+			bytes[r.chunk[i].kind] += sizeof(struct replay_chunk_header) +
+			    r.chunk[i].comp_len;
 	count_events(&r, &nev, &t_end, &unreadable);
 	node_frames = (double)m->nodes * (double)(r.nframes > 0 ? r.nframes : 1);
 
 	printf("replay       %s (version %u, %s)\n", argv[1], r.hdr.version,
-	    r.hdr.flags & REPLAY_CLOSED ? "closed cleanly" : "not closed: the run was cut short");
+	    !(r.hdr.flags & REPLAY_CLOSED) ? "not closed: the run was cut short" :
+	    r.cut ? "closed cleanly, then cut short" : "closed cleanly");
 	printf("scene        %s (recorded from %s)\n", m->name, m->path);
 	printf("nodes        %u (%u triangles)\n", m->nodes, m->triangles);
 	printf("options      --until %.9g --integrator %s --dt ", m->duration,
@@ -79,9 +81,14 @@ cmd_info(int argc, char **argv)
 	printf("keyframes    %zu (every %ld steps)\n", r.nkeyframes, m->keyframe_every);
 	printf("events       %ld\n", nev);
 	printf("simulated    %.9g s\n", t_end);
-	printf("file size    %" PRIu64 " bytes\n", r.len);
-	printf("bytes/node/frame %.3f in all, %.3f for the frames alone (raw float32: 12)\n",
-	    (double)r.len / node_frames, (double)frame_bytes / node_frames);
+	printf("file size    %" PRIu64 " bytes: scene %" PRIu64 ", frames %" PRIu64 ", keyframes %"
+	    PRIu64 ", steps (statistics and events) %" PRIu64 ", index %" PRIu64 "\n", r.len,
+	    bytes[REPLAY_META], bytes[REPLAY_FRAMES], bytes[REPLAY_KEYFRAME], bytes[REPLAY_STEPS],
+	    bytes[REPLAY_INDEX]);
+	printf("bytes/node/frame %.3f in all, %.3f for the frames alone, %.3f without the steps "
+	    "chunks (raw float32: 12)\n", (double)r.len / node_frames,
+	    (double)bytes[REPLAY_FRAMES] / node_frames,
+	    (double)(r.len - bytes[REPLAY_STEPS]) / node_frames);
 	printf("integrity    ");
 	if (r.nbad == 0 && !r.cut && unreadable == 0)
 		printf("whole: %zu chunks\n", r.nchunks);

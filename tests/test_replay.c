@@ -576,6 +576,51 @@ cli_pc2(void **state)
 	replay_close(&rp);
 }
 
+/* info on a cut file and on one with a flipped bit says so; events and
+ * export still work on what is whole. */
+static void
+cli_info_damaged(void **state)
+{
+	struct result r;
+	char args[2000], path[700];
+	unsigned char *buf;
+	size_t len;
+	FILE *f;
+
+	(void)state;
+	buf = slurp_file(replay_path, &len);
+	path_in_dir(path, sizeof path, "cut.drr");
+	f = fopen(path, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(buf, 1, len - 100, f), len - 100);
+	assert_int_equal(fclose(f), 0);
+	snprintf(args, sizeof args, "info '%s'", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "closed cleanly, then cut short"));
+	assert_non_null(strstr(r.out, "whole chunks; cut at chunk"));
+	snprintf(args, sizeof args, "export '%s' --pc2 '%s/cut.pc2'", path, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "cut short"));
+
+	buf[len / 2] ^= 4;
+	path_in_dir(path, sizeof path, "flipped.drr");
+	f = fopen(path, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(buf, 1, len, f), len);
+	assert_int_equal(fclose(f), 0);
+	snprintf(args, sizeof args, "info '%s'", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "1 chunks with a bad CRC"));
+	snprintf(args, sizeof args, "events '%s' --node 0", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "some with a bad CRC"));
+	free(buf);
+}
+
 /* SIGTERM mid-run: the replay is closed properly and plays. */
 static void
 cli_sigterm(void **state)
@@ -720,6 +765,7 @@ main(void)
 		cmocka_unit_test(cli_record_resume),
 		cmocka_unit_test(cli_events_node),
 		cmocka_unit_test(cli_pc2),
+		cmocka_unit_test(cli_info_damaged),
 		cmocka_unit_test(cli_bad),
 		cmocka_unit_test(cli_sigterm),
 		cmocka_unit_test(shipped_replays),

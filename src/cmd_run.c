@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -234,6 +235,16 @@ parse_resume(const char *arg, char **file, long *step)
 	return 0;
 }
 
+/* 1 if both paths name one existing file. */
+static int
+same_file(const char *a, const char *b)
+{
+	struct stat sa, sb;
+
+	return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+	    sa.st_ino == sb.st_ino;
+}
+
 /* The scene and options of a replay, and the state of its last keyframe
  * at or before the step asked for. */
 static int
@@ -407,6 +418,23 @@ cmd_run(int argc, char **argv)
 			fprintf(stderr, "drape run: --resume runs with the recorded --dt and "
 			    "--integrator; only --until may change\n");
 			return EXIT_USAGE;
+		}
+		if (record != NULL) {
+			char *file;
+			long step;
+			int same;
+
+			if (parse_resume(resume, &file, &step) != 0) {
+				fprintf(stderr, "drape run: out of memory\n");
+				return EXIT_RUNTIME;
+			}
+			same = same_file(file, record);
+			free(file);
+			if (same) {
+				fprintf(stderr, "drape run: --record '%s' would overwrite the replay "
+				    "being resumed: expected another file\n", record);
+				return EXIT_USAGE;
+			}
 		}
 		if ((rc = resume_run(&st, &sc, resume, until, &keyframe_every)) != EXIT_OK)
 			return rc;

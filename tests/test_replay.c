@@ -704,6 +704,10 @@ cli_bad(void **state)
 	snprintf(args, sizeof args, "run --resume '%s' --dt 1ms", replay_path);
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
+	snprintf(args, sizeof args, "run --resume '%s@40' --record '%s'", replay_path, replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "would overwrite the replay being resumed"));
 	drape(&r, "run --keyframe-every 0 " TOP_SRCDIR "/scenes/strip.scene");
 	assert_int_equal(r.status, 2);
 	/* an output that cannot be written: exit 1 with the file named */

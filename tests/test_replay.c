@@ -449,6 +449,20 @@ cli_record_resume(void **state)
 	assert_int_equal(r.status, 0);
 	assert_memory_equal(hash_of(r.out), hash, 16);
 
+	/* the adaptive integrator: its next step is part of the keyframe */
+	snprintf(args, sizeof args, "run --integrator dopri5 --dt 1ms --until 20ms --record "
+	    "'%s/dopri5.drr' --keyframe-every 5 '%s'", dir, tiny_scene_file());
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	memcpy(hash, hash_of(r.out), 16);
+	snprintf(args, sizeof args, "run --resume '%s/dopri5.drr@12'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "at step 10 "));
+	assert_non_null(strstr(r.out, "integrator   dopri5"));
+	assert_non_null(strstr(r.out, "simulated    0.02 s"));
+	assert_memory_equal(hash_of(r.out), hash, 16);
+
 	snprintf(args, sizeof args, "info '%s/cli.drr'", dir);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);

@@ -11,12 +11,16 @@ enum {
 	EXIT_USAGE = 2,		/* bad arguments, bad scene or replay */
 	EXIT_BLOWUP = 3,	/* the simulation diverged */
 	EXIT_FOUND = 4,		/* drape check found intersections */
+	EXIT_INTERRUPTED = 130,	/* SIGINT or SIGTERM stopped a run */
 };
 
 int cmd_run(int argc, char **argv);
 int cmd_ccd(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_snapshot(int argc, char **argv);
+int cmd_info(int argc, char **argv);
+int cmd_events(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 void usage(FILE *f);
 
 #endif

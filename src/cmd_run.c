@@ -1,16 +1,24 @@
 /* cmd_run.c: `drape run` and `drape SCENE`: the TUI on a live run when on a
- * terminal, else a headless run with progress and a summary. */
+ * terminal, else a headless run with progress and a summary; a headless
+ * run may record a replay (--record) or continue one from a keyframe
+ * (--resume). */
+#include <errno.h>
 #include <getopt.h>
 #include <inttypes.h>
+#include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "cmd.h"
 #include "obj.h"
+#include "record.h"
+#include "replay.h"
 #include "scene.h"
 #include "shadow.h"
 #include "source.h"
@@ -19,6 +27,29 @@
 #include "units.h"
 
 #define DRAPE_RASTER 0.5e-3	/* m: the shadow's cells, 1/600 of a 30 cm specimen */
+
+/* Set by SIGINT and SIGTERM: the run stops after its step and closes its
+ * replay properly. */
+static volatile sig_atomic_t interrupted;
+
+static void
+on_signal(int sig)
+{
+	interrupted = sig;
+}
+
+static void
+catch_signals(void)
+{
+	struct sigaction sa;
+
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sa.sa_flags = SA_RESTART;	/* a replay's write is not cut by the signal */
+	sigemptyset(&sa.sa_mask);
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+}
 
 static double
 now(void)
@@ -224,6 +255,120 @@ bad_option(const char *opt, const char *val, const char *what)
 	return EXIT_USAGE;
 }
 
+/* FILE or FILE@STEP. */
+static int
+parse_resume(const char *arg, char **file, long *step)
+{
+	const char *at = strrchr(arg, '@');
+	char *end;
+	size_t len = strlen(arg);
+
+	*step = -1;
+	if (at != NULL && at[1] != '\0') {
+		errno = 0;
+		*step = strtol(at + 1, &end, 10);
+		if (errno == 0 && *end == '\0' && *step >= 0)
+			len = (size_t)(at - arg);
+		else
+			*step = -1;
+	}
+	if ((*file = malloc(len + 1)) == NULL)
+		return -1;
+	memcpy(*file, arg, len);
+	(*file)[len] = '\0';
+	return 0;
+}
+
+/* 1 if both paths name one existing file. */
+static int
+same_file(const char *a, const char *b)
+{
+	struct stat sa, sb;
+
+	return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+	    sa.st_ino == sb.st_ino;
+}
+
+/* The scene and options of a replay, and the state of its last keyframe
+ * at or before the step asked for. */
+static int
+resume_run(struct stepper *st, struct scene *sc, const char *arg, double until,
+    long *keyframe_every)
+{
+	struct replay rp;
+	struct replay_keyframe kf;
+	struct drape_err err;
+	char *file;
+	long step, k;
+	int rc = EXIT_USAGE;
+
+	if (parse_resume(arg, &file, &step) != 0) {
+		fprintf(stderr, "drape run: out of memory\n");
+		return EXIT_RUNTIME;
+	}
+	if (replay_open(&rp, file, &err) != 0) {
+		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
+		free(file);
+		return EXIT_USAGE;
+	}
+	if ((k = replay_find_keyframe(&rp, step)) < 0) {
+		fprintf(stderr, "drape run: --resume: %s: no intact keyframe at or before step %ld\n",
+		    file, step);
+		goto out;
+	}
+	if (replay_read_keyframe(&rp, (size_t)k, &kf, &err) != 0) {
+		fprintf(stderr, "drape run: --resume: %s: %s\n", file, err.msg);
+		goto out;
+	}
+	if (scene_parse(sc, rp.meta.path, rp.meta.text, &err) != 0) {
+		fprintf(stderr, "drape run: --resume: %s: its scene: %s\n", file, err.msg);
+		replay_keyframe_free(&kf);
+		goto out;
+	}
+	sc->duration = until > 0 ? until : rp.meta.duration;
+	sc->dt = rp.meta.dt;
+	if (rp.meta.integrator < 0 || rp.meta.integrator >= INTEG_COUNT) {
+		fprintf(stderr, "drape run: --resume: %s: unknown integrator %d\n", file,
+		    rp.meta.integrator);
+		goto fail_scene;
+	}
+	sc->integrator = (enum integrator_kind)rp.meta.integrator;
+	if (stepper_init(st, sc, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		goto fail_scene;
+	}
+	if ((uint32_t)st->cl.n != rp.meta.nodes || st->dt_set != rp.meta.dt_set) {
+		fprintf(stderr, "drape run: --resume: %s: its scene now gives %d nodes and dt %.17g, "
+		    "expected the recorded %u and %.17g\n", file, st->cl.n, st->dt_set,
+		    rp.meta.nodes, rp.meta.dt_set);
+		stepper_free(st);
+		goto fail_scene;
+	}
+	memcpy(st->y, kf.y, 6 * (size_t)st->cl.n * sizeof *st->y);
+	st->t = kf.t;
+	st->step = kf.step;
+	st->dt = kf.dt;
+	if (stepper_hash(st) != kf.hash) {
+		fprintf(stderr, "drape run: --resume: %s: the keyframe at step %ld does not match "
+		    "its hash\n", file, kf.step);
+		stepper_free(st);
+		goto fail_scene;
+	}
+	if (*keyframe_every == 0)
+		*keyframe_every = rp.meta.keyframe_every > 0 ? rp.meta.keyframe_every : 0;
+	printf("resumed      from %s at step %ld (t = %.9g s)\n", file, kf.step, kf.t);
+	replay_keyframe_free(&kf);
+	rc = EXIT_OK;
+	goto out;
+fail_scene:
+	replay_keyframe_free(&kf);
+	scene_free(sc);
+out:
+	replay_close(&rp);
+	free(file);
+	return rc;
+}
+
 int
 cmd_run(int argc, char **argv)
 {
@@ -236,21 +381,27 @@ cmd_run(int argc, char **argv)
 		{ "delay", required_argument, NULL, 'd' },
 		{ "paused", no_argument, NULL, 'p' },
 		{ "final-obj", required_argument, NULL, 'o' },
+		{ "record", required_argument, NULL, 'r' },
+		{ "resume", required_argument, NULL, 'R' },
+		{ "keyframe-every", required_argument, NULL, 'k' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
-	const char *final_obj = NULL;
+	const char *final_obj = NULL, *record = NULL, *resume = NULL;
 	double until = -1, dt = -1;
 	int integ = -1, c, tty = isatty(STDERR_FILENO), rc = EXIT_OK;
 	bool headless = false;
 	struct tui_opts topt = { .color = true, .delay = 1, .paused = false };
+	long keyframe_every = 0;
 	struct scene sc;
 	struct stepper st;
 	struct drape_err err;
 	struct blowup bl;
 	struct hash_totals ht;
+	struct recorder rec;
+	bool recording = false;
 	double t0, last;
-	char why[200];
+	char why[200], *end;
 
 	optind = 1;
 	opterr = 0;
@@ -263,7 +414,6 @@ cmd_run(int argc, char **argv)
 			topt.color = false;
 			break;
 		case 'd': {
-			char *end;
 			long d = strtol(optarg, &end, 10);
 
 			if (end == optarg || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
@@ -299,6 +449,18 @@ cmd_run(int argc, char **argv)
 		case 'o':
 			final_obj = optarg;
 			break;
+		case 'r':
+			record = optarg;
+			break;
+		case 'R':
+			resume = optarg;
+			break;
+		case 'k':
+			errno = 0;
+			keyframe_every = strtol(optarg, &end, 10);
+			if (errno != 0 || end == optarg || *end != '\0' || keyframe_every < 1)
+				return bad_option("--keyframe-every", optarg, "a whole number of steps from 1");
+			break;
 		case 'h':
 			usage(stdout);
 			return EXIT_OK;
@@ -312,27 +474,72 @@ cmd_run(int argc, char **argv)
 			return EXIT_USAGE;
 		}
 	}
-	if (optind != argc - 1) {
-		fprintf(stderr, "drape run: expected one scene file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+	if (resume != NULL) {
+		if (optind != argc) {
+			fprintf(stderr, "drape run: --resume takes no scene file: the replay holds it\n");
+			return EXIT_USAGE;
+		}
+		if (dt >= 0 || integ >= 0) {
+			fprintf(stderr, "drape run: --resume runs with the recorded --dt and "
+			    "--integrator; only --until may change\n");
+			return EXIT_USAGE;
+		}
+		if (record != NULL) {
+			char *file;
+			long step;
+			int same;
+
+			if (parse_resume(resume, &file, &step) != 0) {
+				fprintf(stderr, "drape run: out of memory\n");
+				return EXIT_RUNTIME;
+			}
+			same = same_file(file, record);
+			free(file);
+			if (same) {
+				fprintf(stderr, "drape run: --record '%s' would overwrite the replay "
+				    "being resumed: expected another file\n", record);
+				return EXIT_USAGE;
+			}
+		}
+		if ((rc = resume_run(&st, &sc, resume, until, &keyframe_every)) != EXIT_OK)
+			return rc;
+	} else {
+		if (optind != argc - 1) {
+			fprintf(stderr, "drape run: expected one scene file\n");
+			usage(stderr);
+			return EXIT_USAGE;
+		}
+		if (scene_load(&sc, argv[optind], &err) != 0) {
+			fprintf(stderr, "drape: %s\n", err.msg);
+			return EXIT_USAGE;
+		}
+		if (until > 0)
+			sc.duration = until;
+		if (dt >= 0)
+			sc.dt = dt;
+		if (integ >= 0)
+			sc.integrator = (enum integrator_kind)integ;
+		if (stepper_init(&st, &sc, &err) != 0) {
+			fprintf(stderr, "drape: %s\n", err.msg);
+			scene_free(&sc);
+			return EXIT_USAGE;
+		}
 	}
-	if (scene_load(&sc, argv[optind], &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		return EXIT_USAGE;
-	}
-	if (until > 0)
-		sc.duration = until;
-	if (dt >= 0)
-		sc.dt = dt;
-	if (integ >= 0)
-		sc.integrator = (enum integrator_kind)integ;
-	if (stepper_init(&st, &sc, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		scene_free(&sc);
-		return EXIT_USAGE;
+	if (record != NULL) {
+		if (keyframe_every == 0)
+			keyframe_every = record_default_keyframes(&st);
+		if (record_open(&rec, record, &st, keyframe_every, &err) != 0) {
+			fprintf(stderr, "drape: --record: %s\n", err.msg);
+			stepper_free(&st);
+			scene_free(&sc);
+			return EXIT_RUNTIME;
+		}
+		recording = true;
 	}
 
+	/* recording and resuming run headless until the front end records */
+	if (record != NULL || resume != NULL)
+		headless = true;
 	if (!headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
 		fprintf(stderr, "drape: not a terminal: running headless\n");
 		headless = true;
@@ -342,9 +549,10 @@ cmd_run(int argc, char **argv)
 		goto done;
 	}
 
+	catch_signals();
 	memset(&ht, 0, sizeof ht);
 	t0 = last = now();
-	while (!stepper_done(&st)) {
+	while (!stepper_done(&st) && !interrupted) {
 		if (stepper_step(&st, &bl) != 0) {
 			if (tty)
 				fputc('\n', stderr);
@@ -358,6 +566,14 @@ cmd_run(int argc, char **argv)
 		}
 		if (uses_hash(&st) && st.col.st.broad.rebuilt)
 			hash_add(&ht, &st.col.st.broad.hash);
+		if (recording && record_step(&rec, &st, &err) != 0) {
+			if (tty)
+				fputc('\n', stderr);
+			fprintf(stderr, "drape: %s; the run stops at step %ld, and the replay holds "
+			    "what was written\n", err.msg, st.step);
+			rc = EXIT_RUNTIME;
+			break;
+		}
 		if (tty && (st.step & 255) == 0 && now() - last > 0.25) {
 			last = now();
 			progress(&st, last - t0);
@@ -365,6 +581,16 @@ cmd_run(int argc, char **argv)
 	}
 	if (tty)
 		fputs("\r\033[K", stderr);
+	if (interrupted && rc == EXIT_OK) {
+		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)\n",
+		    interrupted == SIGINT ? "interrupted" : "terminated", st.step, st.t);
+		rc = EXIT_INTERRUPTED;
+	}
+	if (recording && record_close(&rec, &st, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		if (rc == EXIT_OK)
+			rc = EXIT_RUNTIME;
+	}
 	summary(&st, now() - t0, &ht);
 done:
 	if (rc == EXIT_OK)

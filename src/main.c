@@ -11,8 +11,12 @@ usage(FILE *f)
 	fputs("usage: drape [--help | --version]\n"
 	    "       drape SCENE\n"
 	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
-	    "                 [--final-obj FILE] [-C | --no-color] [-d | --delay TENTHS]\n"
-	    "                 [--paused] SCENE\n"
+	    "                 [--final-obj FILE] [--record FILE.drr] [--keyframe-every N]\n"
+	    "                 [-C | --no-color] [-d | --delay TENTHS] [--paused] SCENE\n"
+	    "       drape run --resume FILE.drr[@STEP] [--until T] [--record FILE.drr]\n"
+	    "       drape info FILE.drr\n"
+	    "       drape events [--node N] [--type T] [--from STEP] [--to STEP] FILE.drr\n"
+	    "       drape export [--pc2 OUT.pc2] [--obj REST.obj] [--obj-seq DIR] FILE.drr\n"
 	    "       drape check [--every N] SCENE|OBJ...\n"
 	    "       drape snapshot [--step N] [--view front|side|top|iso] [--size WxH]\n"
 	    "                 [--perspective] SCENE\n"
@@ -46,6 +50,12 @@ main(int argc, char **argv)
 		return cmd_check(argc - 1, argv + 1);
 	if (strcmp(argv[1], "snapshot") == 0)
 		return cmd_snapshot(argc - 1, argv + 1);
+	if (strcmp(argv[1], "info") == 0)
+		return cmd_info(argc - 1, argv + 1);
+	if (strcmp(argv[1], "events") == 0)
+		return cmd_events(argc - 1, argv + 1);
+	if (strcmp(argv[1], "export") == 0)
+		return cmd_export(argc - 1, argv + 1);
 	if (argv[1][0] == '-') {
 		fprintf(stderr, "drape: unknown option '%s'\n", argv[1]);
 		usage(stderr);

@@ -1,0 +1,130 @@
+/* cmd_events.c: `drape events FILE [--node N] [--type T] [--from S] [--to S]`:
+ * a replay's collision events, one per line, tab-separated, for awk and sort. */
+#include <errno.h>
+#include <getopt.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmd.h"
+#include "replay.h"
+
+static int
+bad(const char *opt, const char *val, const char *what)
+{
+	fprintf(stderr, "drape events: %s '%s': expected %s\n", opt, val, what);
+	return EXIT_USAGE;
+}
+
+static int
+parse_long(const char *s, long *out)
+{
+	char *end;
+
+	errno = 0;
+	*out = strtol(s, &end, 10);
+	return errno == 0 && end != s && *end == '\0' && *out >= 0 ? 0 : -1;
+}
+
+int
+cmd_events(int argc, char **argv)
+{
+	static const struct option longopts[] = {
+		{ "node", required_argument, NULL, 'n' },
+		{ "type", required_argument, NULL, 't' },
+		{ "from", required_argument, NULL, 'f' },
+		{ "to", required_argument, NULL, 'T' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 },
+	};
+	long node = -1, from = 0, to = LONG_MAX;
+	int type = -1, c, k, rc = EXIT_OK;
+	struct replay r;
+	struct replay_steps ss;
+	struct drape_err err;
+	size_t i, e;
+
+	optind = 1;
+	opterr = 0;
+	while ((c = getopt_long(argc, argv, "h", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'n':
+			if (parse_long(optarg, &node) != 0 || node > INT_MAX)
+				return bad("--node", optarg, "a node number from 0");
+			break;
+		case 't':
+			for (k = 0; k < CONTACT_NTYPES; k++)
+				if (strcmp(optarg, contact_type_name[k]) == 0)
+					type = k;
+			if (type < 0)
+				return bad("--type", optarg, "node-node, node-edge, node-face, "
+				    "edge-edge or obstacle");
+			break;
+		case 'f':
+			if (parse_long(optarg, &from) != 0)
+				return bad("--from", optarg, "a step number from 0");
+			break;
+		case 'T':
+			if (parse_long(optarg, &to) != 0)
+				return bad("--to", optarg, "a step number from 0");
+			break;
+		case 'h':
+			usage(stdout);
+			return EXIT_OK;
+		default:
+			fprintf(stderr, "drape events: unknown option or missing value: '%s'\n",
+			    argv[optind - 1]);
+			usage(stderr);
+			return EXIT_USAGE;
+		}
+	}
+	if (optind != argc - 1) {
+		fprintf(stderr, "drape events: expected one replay file\n");
+		usage(stderr);
+		return EXIT_USAGE;
+	}
+	if (replay_open(&r, argv[optind], &err) != 0) {
+		fprintf(stderr, "drape events: %s\n", err.msg);
+		return EXIT_USAGE;
+	}
+	if (node >= (long)r.meta.nodes) {
+		fprintf(stderr, "drape events: --node %ld: expected a node below %u\n", node,
+		    r.meta.nodes);
+		replay_close(&r);
+		return EXIT_USAGE;
+	}
+	if (r.cut || r.nbad > 0)
+		fprintf(stderr, "drape events: %s: %zu whole chunks%s%s; listing what they hold\n",
+		    argv[optind], r.nchunks, r.cut ? ", cut short" : "",
+		    r.nbad > 0 ? ", some with a bad CRC" : "");
+	printf("step\tnode\ttype\tother\tobstacle\tqx\tqy\tqz\tnx\tny\tnz\tvn_before\tvn_after\n");
+	for (i = 0; i < r.nchunks; i++) {
+		const struct replay_chunk *ch = &r.chunk[i];
+
+		if (ch->kind != REPLAY_STEPS || (long)ch->first_step > to ||
+		    (long)(ch->first_step + ch->count) <= from)
+			continue;
+		if (replay_read_steps(&r, i, &ss, &err) != 0) {
+			fprintf(stderr, "drape events: %s: %s; skipped\n", argv[optind], err.msg);
+			continue;
+		}
+		for (e = 0; e < ss.nev; e++) {
+			const struct contact_event *ev = &ss.ev[e];
+
+			if (ev->step < from || ev->step > to || (node >= 0 && ev->node != node) ||
+			    (type >= 0 && (int)ev->type != type))
+				continue;
+			printf("%ld\t%d\t%s\t%d\t%d\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t"
+			    "%.17g\t%.17g\n", ev->step, ev->node, contact_type_name[ev->type],
+			    ev->other, ev->obstacle, ev->q.x, ev->q.y, ev->q.z,
+			    ev->n.x, ev->n.y, ev->n.z, ev->vn_before, ev->vn_after);
+		}
+		replay_steps_free(&ss);
+	}
+	replay_close(&r);
+	if (fflush(stdout) != 0 || ferror(stdout)) {
+		perror("drape events: stdout");
+		rc = EXIT_RUNTIME;
+	}
+	return rc;
+}

@@ -1,0 +1,115 @@
+/* cmd_info.c: `drape info FILE`: what a replay holds and whether it is whole. */
+#include <inttypes.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cmd.h"
+#include "integrate.h"
+#include "replay.h"
+
+/* Events and the last step's time, from every readable steps chunk. */
+static void
+count_events(const struct replay *r, long *nev, double *t_end, size_t *unreadable)
+{
+	struct replay_steps ss;
+	struct drape_err err;
+	size_t i;
+
+	*nev = 0;
+	*t_end = 0;
+	*unreadable = 0;
+	for (i = 0; i < r->nchunks; i++) {
+		if (r->chunk[i].kind != REPLAY_STEPS)
+			continue;
+		if (replay_read_steps(r, i, &ss, &err) != 0) {
+			(*unreadable)++;
+			continue;
+		}
+		*nev += (long)ss.nev;
+		if (ss.count > 0 && ss.s[ss.count - 1].t > *t_end)
+			*t_end = ss.s[ss.count - 1].t;
+		replay_steps_free(&ss);
+	}
+}
+
+int
+cmd_info(int argc, char **argv)
+{
+	struct replay r;
+	struct drape_err err;
+	const struct replay_meta *m;
+	uint64_t bytes[REPLAY_INDEX + 1] = { 0 };
+	size_t i, unreadable;
+	long nev;
+	double t_end, node_frames;
+
+	if (argc == 2 && strcmp(argv[1], "--help") == 0) {
+		usage(stdout);
+		return EXIT_OK;
+	}
+	if (argc != 2 || argv[1][0] == '-') {
+		fprintf(stderr, "drape info: expected one replay file\n");
+		usage(stderr);
+		return EXIT_USAGE;
+	}
+	if (replay_open(&r, argv[1], &err) != 0) {
+		fprintf(stderr, "drape info: %s\n", err.msg);
+		return EXIT_USAGE;
+	}
+	m = &r.meta;
+	for (i = 0; i < r.nchunks; i++)
+		if (r.chunk[i].kind <= REPLAY_INDEX)
+			bytes[r.chunk[i].kind] += sizeof(struct replay_chunk_header) +
+			    r.chunk[i].comp_len;
+	count_events(&r, &nev, &t_end, &unreadable);
+	node_frames = (double)m->nodes * (double)(r.nframes > 0 ? r.nframes : 1);
+
+	printf("replay       %s (version %u, %s)\n", argv[1], r.hdr.version,
+	    !(r.hdr.flags & REPLAY_CLOSED) ? "not closed: the run was cut short" :
+	    r.cut ? "closed cleanly, then cut short" : "closed cleanly");
+	printf("scene        %s (recorded from %s)\n", m->name, m->path);
+	printf("nodes        %u (%u triangles)\n", m->nodes, m->triangles);
+	printf("options      --until %.9g --integrator %s --dt ", m->duration,
+	    m->integrator >= 0 && m->integrator < INTEG_COUNT ?
+	    integrator_name((enum integrator_kind)m->integrator) : "?");
+	if (m->dt == 0)
+		printf("auto (%.9g s)\n", m->dt_set);
+	else
+		printf("%.9g\n", m->dt);
+	printf("steps        %ld\n", r.last_step + 1);
+	printf("frames       %zu at %.9g per second\n", r.nframes, m->output_rate);
+	printf("keyframes    %zu (every %ld steps)\n", r.nkeyframes, m->keyframe_every);
+	printf("events       %ld\n", nev);
+	printf("simulated    %.9g s\n", t_end);
+	printf("file size    %" PRIu64 " bytes: scene %" PRIu64 ", frames %" PRIu64 ", keyframes %"
+	    PRIu64 ", steps (statistics and events) %" PRIu64 ", index %" PRIu64 "\n", r.len,
+	    bytes[REPLAY_META], bytes[REPLAY_FRAMES], bytes[REPLAY_KEYFRAME], bytes[REPLAY_STEPS],
+	    bytes[REPLAY_INDEX]);
+	printf("bytes/node/frame %.3f in all, %.3f for the frames alone, %.3f without the steps "
+	    "chunks (raw float32: 12)\n", (double)r.len / node_frames,
+	    (double)bytes[REPLAY_FRAMES] / node_frames,
+	    (double)(r.len - bytes[REPLAY_STEPS]) / node_frames);
+	printf("integrity    ");
+	if (r.nbad == 0 && !r.cut && unreadable == 0)
+		printf("whole: %zu chunks\n", r.nchunks);
+	else {
+		printf("%zu whole chunks", r.nchunks);
+		if (r.cut)
+			printf("; cut at chunk %zu (byte %" PRIu64 ")", r.seen, r.cut_offset);
+		if (r.nbad > 0) {
+			printf("; %zu chunks with a bad CRC (", r.nbad);
+			for (i = 0; i < r.nbad && i < sizeof r.bad_ordinal / sizeof r.bad_ordinal[0]; i++)
+				printf("%s%" PRIu64, i ? ", " : "", r.bad_ordinal[i]);
+			printf("%s)", r.nbad > i ? ", ..." : "");
+		}
+		if (unreadable > 0)
+			printf("; %zu chunks that do not decode", unreadable);
+		printf("\n");
+	}
+	replay_close(&r);
+	if (fflush(stdout) != 0) {
+		perror("drape info: stdout");
+		return EXIT_RUNTIME;
+	}
+	return EXIT_OK;
+}

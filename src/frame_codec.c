@@ -1,0 +1,106 @@
+/* frame_codec.c: prediction residuals and byte shuffling (see the header). */
+#include <string.h>
+
+#include "frame_codec.h"
+
+void
+codec_shuffle(const unsigned char *in, unsigned char *out, size_t nelem, size_t elsize)
+{
+	size_t i, b;
+
+	for (i = 0; i < nelem; i++)
+		for (b = 0; b < elsize; b++)
+			out[b * nelem + i] = in[i * elsize + b];
+}
+
+void
+codec_unshuffle(const unsigned char *in, unsigned char *out, size_t nelem, size_t elsize)
+{
+	size_t i, b;
+
+	for (i = 0; i < nelem; i++)
+		for (b = 0; b < elsize; b++)
+			out[i * elsize + b] = in[b * nelem + i];
+}
+
+static uint32_t
+zigzag(uint32_t d)
+{
+	return (d << 1) ^ (uint32_t)-(int32_t)(d >> 31);
+}
+
+static uint32_t
+unzigzag(uint32_t z)
+{
+	return (z >> 1) ^ (uint32_t)-(int32_t)(z & 1);
+}
+
+void
+codec_delta_u32(uint32_t *w, size_t n)
+{
+	uint32_t prev = 0, cur;
+	size_t i;
+
+	for (i = 0; i < n; i++) {
+		cur = w[i];
+		w[i] = zigzag(cur - prev);
+		prev = cur;
+	}
+}
+
+void
+codec_undelta_u32(uint32_t *w, size_t n)
+{
+	uint32_t prev = 0;
+	size_t i;
+
+	for (i = 0; i < n; i++) {
+		prev += unzigzag(w[i]);
+		w[i] = prev;
+	}
+}
+
+/* The temporal difference of word k of frame f (frame -1 is all zero). */
+static uint32_t
+tdiff(const uint32_t *bits, size_t f, size_t ncoord, size_t k)
+{
+	return bits[f * ncoord + k] - (f > 0 ? bits[(f - 1) * ncoord + k] : 0);
+}
+
+void
+frames_encode(const float *x, size_t nframes, size_t ncoord, uint32_t *tmp, unsigned char *out)
+{
+	size_t f, k, n = nframes * ncoord;
+	uint32_t *bits = tmp;
+
+	/* Residuals are computed back to front so that tmp can hold the bit
+	 * patterns the earlier residuals still need. */
+	memcpy(bits, x, n * sizeof *bits);
+	for (f = nframes; f-- > 0;)
+		for (k = ncoord; k-- > 0;) {
+			uint32_t d = tdiff(bits, f, ncoord, k);
+
+			if (k >= 3)
+				d -= tdiff(bits, f, ncoord, k - 3);
+			bits[f * ncoord + k] = zigzag(d);
+		}
+	codec_shuffle((const unsigned char *)bits, out, n, 4);
+}
+
+void
+frames_decode(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp, float *x)
+{
+	size_t f, k, n = nframes * ncoord;
+	uint32_t *bits = tmp;
+
+	codec_unshuffle(in, (unsigned char *)bits, n, 4);
+	for (f = 0; f < nframes; f++)
+		for (k = 0; k < ncoord; k++) {
+			uint32_t d = unzigzag(bits[f * ncoord + k]);
+
+			if (k >= 3)
+				d += tdiff(bits, f, ncoord, k - 3);
+			bits[f * ncoord + k] = d + (f > 0 ? bits[(f - 1) * ncoord + k] : 0);
+		}
+	memcpy(x, bits, n * sizeof *bits);
+}

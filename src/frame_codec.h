@@ -1,0 +1,30 @@
+/* frame_codec.h: lossless packing of numbers for deflate. Float32 position
+ * frames become residuals of a prediction (each coordinate's bit pattern
+ * minus the previous frame's, minus the same for the previous node: cloth
+ * nodes move together), zigzagged so that small residuals of either sign
+ * have zero high bytes; a byte shuffle then groups the bytes of all words
+ * by significance, so deflate sees long runs of near-zero high bytes. */
+#ifndef DRAPE_FRAME_CODEC_H
+#define DRAPE_FRAME_CODEC_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* out[b * nelem + i] = byte b of element i (elements of elsize bytes). */
+void codec_shuffle(const unsigned char *in, unsigned char *out, size_t nelem, size_t elsize);
+void codec_unshuffle(const unsigned char *in, unsigned char *out, size_t nelem, size_t elsize);
+
+/* Words of consecutive differences (zigzagged) and back, in place. */
+void codec_delta_u32(uint32_t *w, size_t n);
+void codec_undelta_u32(uint32_t *w, size_t n);
+
+/* nframes frames of ncoord floats (x y z per node) into 4 * nframes *
+ * ncoord bytes, and back; tmp holds nframes * ncoord words. Each frame is
+ * predicted from the one before it in the same call only, so a chunk
+ * decodes on its own. */
+void frames_encode(const float *x, size_t nframes, size_t ncoord, uint32_t *tmp,
+    unsigned char *out);
+void frames_decode(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp,
+    float *x);
+
+#endif

@@ -1,0 +1,89 @@
+/* pc2.c: the PC2 writer. */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pc2.h"
+
+static void
+release(struct pc2_writer *w)
+{
+	free(w->path);
+	free(w->tmp);
+	memset(w, 0, sizeof *w);
+}
+
+int
+pc2_open(struct pc2_writer *w, const char *path, int points, float start, float rate,
+    struct drape_err *err)
+{
+	size_t len = strlen(path) + 8;
+
+	memset(w, 0, sizeof *w);
+	if ((w->path = malloc(len)) == NULL || (w->tmp = malloc(len)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		release(w);
+		return -1;
+	}
+	strcpy(w->path, path);
+	snprintf(w->tmp, len, "%s.tmp", path);
+	memcpy(w->h.magic, "POINTCACHE2\0", 12);
+	w->h.version = 1;
+	w->h.points = points;
+	w->h.start = start;
+	w->h.rate = rate;
+	w->h.samples = 0;
+	if ((w->f = fopen(w->tmp, "wb")) == NULL) {
+		err_set(err, "%s: cannot create: %s", w->tmp, strerror(errno));
+		release(w);
+		return -1;
+	}
+	if (fwrite(&w->h, sizeof w->h, 1, w->f) != 1) {
+		err_set(err, "%s: write failed: %s", w->tmp, strerror(errno));
+		pc2_abort(w);
+		return -1;
+	}
+	return 0;
+}
+
+int
+pc2_append(struct pc2_writer *w, const float *x, struct drape_err *err)
+{
+	size_t n = 3 * (size_t)w->h.points;
+
+	if (fwrite(x, sizeof *x, n, w->f) != n) {
+		err_set(err, "%s: write failed: %s", w->tmp, strerror(errno));
+		return -1;
+	}
+	w->h.samples++;
+	return 0;
+}
+
+int
+pc2_close(struct pc2_writer *w, struct drape_err *err)
+{
+	int bad = fseek(w->f, 0, SEEK_SET) != 0 || fwrite(&w->h, sizeof w->h, 1, w->f) != 1 ||
+	    fflush(w->f) != 0 || ferror(w->f);
+
+	if (fclose(w->f) != 0)
+		bad = 1;
+	w->f = NULL;
+	if (bad || rename(w->tmp, w->path) != 0) {
+		err_set(err, "%s: write failed: %s", w->path, strerror(errno));
+		remove(w->tmp);
+		release(w);
+		return -1;
+	}
+	release(w);
+	return 0;
+}
+
+void
+pc2_abort(struct pc2_writer *w)
+{
+	if (w->f != NULL)
+		fclose(w->f);
+	if (w->tmp != NULL)
+		remove(w->tmp);
+	release(w);
+}

@@ -1,0 +1,31 @@
+/* record.h: a run recorded into a replay file. The recorder watches the
+ * stepper from outside, after each step: frames at the scene's output
+ * rate, a keyframe every so many steps (and at the start and the end), and
+ * each step's statistics and collision events. It never changes the run. */
+#ifndef DRAPE_RECORD_H
+#define DRAPE_RECORD_H
+
+#include "replay.h"
+#include "stepper.h"
+
+struct recorder {
+	struct replay_writer w;
+	double rate;		/* frames per second of simulated time */
+	long next_frame;	/* the frame number to write next */
+	long keyframe_every;
+	long last_key;		/* step of the last keyframe, -1: none */
+};
+
+/* The default keyframe interval: half a second of the scene's step. */
+long record_default_keyframes(const struct stepper *st);
+
+/* Opens path and writes the scene, a keyframe and a frame of the current
+ * state (step 0, or where a resumed run starts). */
+int record_open(struct recorder *rc, const char *path, const struct stepper *st,
+    long keyframe_every, struct drape_err *err);
+/* After each stepper_step that succeeded. */
+int record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err);
+/* A keyframe of the final state, then closes; frees rc even on error. */
+int record_close(struct recorder *rc, const struct stepper *st, struct drape_err *err);
+
+#endif

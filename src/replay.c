@@ -1,0 +1,1248 @@
+/* replay.c: the replay file format: chunk framing and CRCs, the payloads'
+ * packing, the writer and the hostile-file reader (drape-replay(5)). */
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+
+#include "frame_codec.h"
+#include "replay.h"
+
+#define FRAMES_PER_CHUNK 25	/* half a second at 50 frames/s */
+#define STEPS_PER_CHUNK 256
+#define EVENTS_PER_CHUNK (1u << 18)	/* flush the steps early past this */
+/* Steps chunks are most of a file with contacts, and their columns' low
+ * bytes are noise: run-length deflate is faster and smaller than level 1,
+ * and level 6 saves only 2 % more for three times the overhead (the whole
+ * tablecloth, a 17 s run: 166 MB and +3.6 s with run lengths, 170 MB and
+ * +4.6 s at level 1, 163 MB and +11 s at level 6). */
+#define STEPS_LEVEL 1
+#define STEPS_STRATEGY Z_RLE
+
+/* Bounds a reader holds a file to, before it allocates anything. */
+#define MAX_NODES (1u << 22)
+#define MAX_TRIANGLES (1u << 23)
+#define MAX_FRAMES_CHUNK 4096u
+#define MAX_STEPS_CHUNK 65536u
+#define MAX_META_RAW (64u << 20)
+#define MAX_STEPS_RAW (512u << 20)
+#define MAX_INDEX (1u << 24)
+
+#define META_FIXED 72		/* bytes before the strings */
+#define NSTAT 33		/* 8-byte words of statistics per step */
+#define EVENT_BYTES 81		/* one event's columns: 4 * 4 + 1 + 8 * 8 */
+
+static const char file_magic[8] = { 'D', 'R', 'A', 'P', 'E', 'R', 'P', 'L' };
+static const char chunk_magic[4] = { 'C', 'H', 'N', 'K' };
+
+/* ---- little helpers ---- */
+
+static void put32(unsigned char *p, uint32_t v) { memcpy(p, &v, 4); }
+static void put64(unsigned char *p, uint64_t v) { memcpy(p, &v, 8); }
+static uint32_t get32(const unsigned char *p) { uint32_t v; memcpy(&v, p, 4); return v; }
+static uint64_t get64(const unsigned char *p) { uint64_t v; memcpy(&v, p, 8); return v; }
+static uint64_t dbits(double d) { uint64_t v; memcpy(&v, &d, 8); return v; }
+static double bitsd(uint64_t v) { double d; memcpy(&d, &v, 8); return d; }
+
+static uint32_t
+crc_of(uint32_t crc, const void *p, size_t n)
+{
+	const unsigned char *b = p;
+
+	while (n > 0) {	/* zlib takes uInt lengths */
+		uInt k = n > (1u << 30) ? 1u << 30 : (uInt)n;
+
+		crc = (uint32_t)crc32(crc, b, k);
+		b += k;
+		n -= k;
+	}
+	return crc;
+}
+
+static uint32_t
+header_crc(const struct replay_file_header *h)
+{
+	return crc_of((uint32_t)crc32(0, Z_NULL, 0), h, offsetof(struct replay_file_header, crc));
+}
+
+static int
+grow(unsigned char **buf, size_t *cap, size_t need)
+{
+	unsigned char *p;
+
+	if (need <= *cap)
+		return 0;
+	if ((p = realloc(*buf, need)) == NULL)
+		return -1;
+	*buf = p;
+	*cap = need;
+	return 0;
+}
+
+static uint64_t zz64(uint64_t d) { return (d << 1) ^ (uint64_t)-(int64_t)(d >> 63); }
+static uint64_t unzz64(uint64_t z) { return (z >> 1) ^ (uint64_t)-(int64_t)(z & 1); }
+
+/* A column of n 8-byte words, delta-coded down the column, shuffled. */
+static void
+pack_col64(uint64_t *w, size_t n, unsigned char *out)
+{
+	uint64_t prev = 0, cur;
+	size_t i;
+
+	for (i = 0; i < n; i++) {
+		cur = w[i];
+		w[i] = zz64(cur - prev);
+		prev = cur;
+	}
+	codec_shuffle((const unsigned char *)w, out, n, 8);
+}
+
+static void
+unpack_col64(const unsigned char *in, size_t n, uint64_t *w)
+{
+	uint64_t prev = 0;
+	size_t i;
+
+	codec_unshuffle(in, (unsigned char *)w, n, 8);
+	for (i = 0; i < n; i++) {
+		prev += unzz64(w[i]);
+		w[i] = prev;
+	}
+}
+
+/* ---- writer ---- */
+
+static int
+write_fail(struct replay_writer *w, struct drape_err *err)
+{
+	err_set(err, "%s: write failed: %s", w->path, errno ? strerror(errno) : "I/O error");
+	w->failed = true;
+	return -1;
+}
+
+static int
+put_bytes(struct replay_writer *w, const void *p, size_t n, struct drape_err *err)
+{
+	errno = 0;
+	if (n > 0 && fwrite(p, 1, n, w->f) != n)
+		return write_fail(w, err);
+	w->bytes += n;
+	return 0;
+}
+
+/* One zlib stream of raw into out (*out_len bytes, compressBound's). */
+static int
+deflate_all(unsigned char *out, uLongf *out_len, const unsigned char *raw, size_t raw_len,
+    int level, int strategy)
+{
+	z_stream z;
+	int rc;
+
+	memset(&z, 0, sizeof z);
+	if (deflateInit2(&z, level, Z_DEFLATED, 15, 8, strategy) != Z_OK)
+		return -1;
+	z.next_in = (Bytef *)(uintptr_t)raw;	/* zlib does not write through it */
+	z.avail_in = (uInt)raw_len;
+	z.next_out = out;
+	z.avail_out = (uInt)*out_len;
+	rc = deflate(&z, Z_FINISH);
+	*out_len = z.total_out;
+	deflateEnd(&z);
+	return rc == Z_STREAM_END ? 0 : -1;
+}
+
+/* Deflates raw and appends it as one chunk, flushed to the file. */
+static int
+write_chunk(struct replay_writer *w, uint32_t kind, uint64_t first_step, uint32_t count,
+    const unsigned char *raw, size_t raw_len, int level, struct drape_err *err)
+{
+	struct replay_chunk_header h;
+	uLongf zlen;
+	uint32_t crc;
+
+	if (w->failed) {
+		err_set(err, "%s: not written after an earlier write error", w->path);
+		return -1;
+	}
+	if (raw_len > UINT32_MAX) {
+		err_set(err, "%s: a chunk of %zu bytes is too large", w->path, raw_len);
+		return -1;
+	}
+	zlen = compressBound((uLong)raw_len);
+	if (grow(&w->zbuf, &w->zbufcap, zlen) != 0) {
+		err_set(err, "%s: out of memory", w->path);
+		return -1;
+	}
+	if (deflate_all(w->zbuf, &zlen, raw, raw_len, level,
+	    kind == REPLAY_STEPS ? STEPS_STRATEGY : Z_DEFAULT_STRATEGY) != 0) {
+		err_set(err, "%s: deflate failed", w->path);
+		return -1;
+	}
+	memcpy(h.magic, chunk_magic, 4);
+	h.kind = kind;
+	h.first_step = first_step;
+	h.count = count;
+	h.comp_len = (uint32_t)zlen;
+	h.raw_len = (uint32_t)raw_len;
+	crc = crc_of((uint32_t)crc32(0, Z_NULL, 0), &h, offsetof(struct replay_chunk_header, crc));
+	h.crc = crc_of(crc, w->zbuf, zlen);
+	if (put_bytes(w, &h, sizeof h, err) != 0 || put_bytes(w, w->zbuf, zlen, err) != 0)
+		return -1;
+	errno = 0;
+	if (fflush(w->f) != 0)
+		return write_fail(w, err);
+	return 0;
+}
+
+static int
+write_header(struct replay_writer *w, uint32_t flags, uint64_t index_offset,
+    struct drape_err *err)
+{
+	struct replay_file_header h;
+
+	memset(&h, 0, sizeof h);
+	memcpy(h.magic, file_magic, 8);
+	h.version = REPLAY_VERSION;
+	h.flags = flags;
+	h.nodes = w->nodes;
+	h.triangles = w->triangles;
+	h.index_offset = index_offset;
+	h.crc = header_crc(&h);
+	errno = 0;
+	if (fwrite(&h, sizeof h, 1, w->f) != 1 || fflush(w->f) != 0)
+		return write_fail(w, err);
+	return 0;
+}
+
+static int
+write_meta(struct replay_writer *w, const struct replay_meta *m, struct drape_err *err)
+{
+	size_t ln = strlen(m->name), lp = strlen(m->path), lt = strlen(m->text);
+	size_t len = META_FIXED + ln + lp + lt + 12 * (size_t)m->triangles, o = META_FIXED;
+	unsigned char *p;
+
+	if (ln + lp + lt > MAX_META_RAW / 2) {
+		err_set(err, "%s: the scene text is too long to record", w->path);
+		return -1;
+	}
+	if (grow(&w->buf, &w->bufcap, len) != 0) {
+		err_set(err, "%s: out of memory", w->path);
+		return -1;
+	}
+	p = w->buf;
+	memset(p, 0, META_FIXED);
+	put32(p, m->nodes);
+	put32(p + 4, m->triangles);
+	put32(p + 8, (uint32_t)m->integrator);
+	put64(p + 16, dbits(m->duration));
+	put64(p + 24, dbits(m->dt));
+	put64(p + 32, dbits(m->dt_set));
+	put64(p + 40, dbits(m->output_rate));
+	put64(p + 48, (uint64_t)m->keyframe_every);
+	put32(p + 56, (uint32_t)ln);
+	put32(p + 60, (uint32_t)lp);
+	put32(p + 64, (uint32_t)lt);
+	memcpy(p + o, m->name, ln);
+	o += ln;
+	memcpy(p + o, m->path, lp);
+	o += lp;
+	memcpy(p + o, m->text, lt);
+	o += lt;
+	memcpy(p + o, m->tri, 12 * (size_t)m->triangles);
+	return write_chunk(w, REPLAY_META, 0, 1, p, len, Z_BEST_COMPRESSION, err);
+}
+
+int
+replay_writer_open(struct replay_writer *w, const char *path, const struct replay_meta *m,
+    struct drape_err *err)
+{
+	size_t n3 = 3 * (size_t)m->nodes;
+
+	memset(w, 0, sizeof *w);
+	w->nodes = m->nodes;
+	w->triangles = m->triangles;
+	w->keyframe_every = m->keyframe_every;
+	w->frames_per_chunk = FRAMES_PER_CHUNK;
+	w->steps_per_chunk = STEPS_PER_CHUNK;
+	if ((w->path = malloc(strlen(path) + 1)) == NULL ||
+	    (w->fx = malloc(FRAMES_PER_CHUNK * n3 * sizeof *w->fx)) == NULL ||
+	    (w->fstep = malloc(FRAMES_PER_CHUNK * sizeof *w->fstep)) == NULL ||
+	    (w->ft = malloc(FRAMES_PER_CHUNK * sizeof *w->ft)) == NULL ||
+	    (w->steps = malloc(STEPS_PER_CHUNK * sizeof *w->steps)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		goto fail;
+	}
+	strcpy(w->path, path);
+	if ((w->f = fopen(path, "wb")) == NULL) {
+		err_set(err, "%s: cannot create: %s", path, strerror(errno));
+		goto fail;
+	}
+	if (write_header(w, 0, 0, err) != 0 || write_meta(w, m, err) != 0)
+		goto fail;
+	return 0;
+fail:
+	if (w->f != NULL) {
+		fclose(w->f);
+		remove(path);
+	}
+	free(w->path);
+	free(w->fx);
+	free(w->fstep);
+	free(w->ft);
+	free(w->steps);
+	free(w->buf);
+	free(w->zbuf);
+	memset(w, 0, sizeof *w);
+	return -1;
+}
+
+static int
+flush_frames(struct replay_writer *w, struct drape_err *err)
+{
+	size_t n3 = 3 * (size_t)w->nodes, k = w->nframes, len = k * (16 + 4 * n3), i;
+	unsigned char *p;
+	uint32_t *tmp;
+	int rc;
+
+	if (k == 0)
+		return 0;
+	if (grow(&w->buf, &w->bufcap, len) != 0 || (tmp = malloc(k * n3 * 4)) == NULL) {
+		err_set(err, "%s: out of memory", w->path);
+		return -1;
+	}
+	p = w->buf;
+	for (i = 0; i < k; i++) {
+		put64(p + 8 * i, w->fstep[i]);
+		put64(p + 8 * (k + i), dbits(w->ft[i]));
+	}
+	frames_encode(w->fx, k, n3, tmp, p + 16 * k);
+	free(tmp);
+	rc = write_chunk(w, REPLAY_FRAMES, w->fstep[0], (uint32_t)k, p, len,
+	    Z_BEST_COMPRESSION, err);
+	w->nframes = 0;
+	return rc;
+}
+
+int
+replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
+    struct drape_err *err)
+{
+	size_t n3 = 3 * (size_t)w->nodes, i;
+	float *f = w->fx + w->nframes * n3;
+
+	for (i = 0; i < n3; i++)
+		f[i] = (float)x[i];
+	w->fstep[w->nframes] = (uint64_t)step;
+	w->ft[w->nframes] = t;
+	if (++w->nframes == w->frames_per_chunk)
+		return flush_frames(w, err);
+	return 0;
+}
+
+int
+replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, const double *y,
+    uint64_t hash, struct drape_err *err)
+{
+	size_t n6 = 6 * (size_t)w->nodes, len = 32 + 8 * n6;
+	uint64_t off = w->bytes;
+
+	if (grow(&w->buf, &w->bufcap, len) != 0) {
+		err_set(err, "%s: out of memory", w->path);
+		return -1;
+	}
+	put64(w->buf, (uint64_t)step);
+	put64(w->buf + 8, dbits(t));
+	put64(w->buf + 16, dbits(dt));
+	put64(w->buf + 24, hash);
+	codec_shuffle((const unsigned char *)y, w->buf + 32, n6, 8);
+	if (write_chunk(w, REPLAY_KEYFRAME, (uint64_t)step, 1, w->buf, len, Z_DEFAULT_COMPRESSION,
+	    err) != 0)
+		return -1;
+	if (w->nkey == w->keycap) {
+		size_t cap = w->keycap ? 2 * w->keycap : 16;
+		uint64_t *a = realloc(w->kstep, cap * sizeof *a), *b;
+
+		if (a == NULL) {
+			err_set(err, "%s: out of memory", w->path);
+			return -1;
+		}
+		w->kstep = a;
+		if ((b = realloc(w->koff, cap * sizeof *b)) == NULL) {
+			err_set(err, "%s: out of memory", w->path);
+			return -1;
+		}
+		w->koff = b;
+		w->keycap = cap;
+	}
+	w->kstep[w->nkey] = (uint64_t)step;
+	w->koff[w->nkey++] = off;
+	return 0;
+}
+
+/* The statistics of step s as NSTAT words, in the order drape-replay(5) lists. */
+static void
+stat_words(const struct replay_step *s, uint64_t *w)
+{
+	const struct collide_stats *c = &s->col;
+	const struct hash_stats *h = &c->broad.hash;
+	int k, i = 0;
+
+	w[i++] = (uint64_t)s->step;
+	w[i++] = dbits(s->t);
+	w[i++] = dbits(s->dt);
+	w[i++] = dbits(c->broad.cell);
+	w[i++] = (uint64_t)h->entries;
+	w[i++] = (uint64_t)h->cubes;
+	w[i++] = (uint64_t)h->shared;
+	w[i++] = dbits(h->load);
+	w[i++] = dbits(h->probe_mean);
+	w[i++] = (uint64_t)h->probe_max;
+	for (k = 0; k < HASH_HIST; k++)
+		w[i++] = (uint64_t)h->hist[k];
+	w[i++] = (uint64_t)c->broad.node_pairs;
+	w[i++] = (uint64_t)c->broad.vt_pairs;
+	w[i++] = (uint64_t)c->broad.ee_pairs;
+	w[i++] = c->broad.rebuilt;
+	w[i++] = (uint64_t)c->narrow_tests;
+	for (k = 0; k < CONTACT_NTYPES; k++)
+		w[i++] = (uint64_t)c->contacts[k];
+	w[i++] = (uint64_t)c->corrections;
+	w[i++] = (uint64_t)c->passes;
+	w[i++] = (uint64_t)c->frozen;
+	w[i++] = (uint64_t)c->unresolved;
+	w[i++] = (uint64_t)s->nev;
+}
+
+static void
+stat_from_words(const uint64_t *w, struct replay_step *s)
+{
+	struct collide_stats *c = &s->col;
+	struct hash_stats *h = &c->broad.hash;
+	int k, i = 0;
+
+	memset(s, 0, sizeof *s);
+	s->step = (long)w[i++];
+	s->t = bitsd(w[i++]);
+	s->dt = bitsd(w[i++]);
+	c->broad.cell = bitsd(w[i++]);
+	h->entries = (long)w[i++];
+	h->cubes = (long)w[i++];
+	h->shared = (long)w[i++];
+	h->load = bitsd(w[i++]);
+	h->probe_mean = bitsd(w[i++]);
+	h->probe_max = (int)w[i++];
+	for (k = 0; k < HASH_HIST; k++)
+		h->hist[k] = (long)w[i++];
+	c->broad.node_pairs = (long)w[i++];
+	c->broad.vt_pairs = (long)w[i++];
+	c->broad.ee_pairs = (long)w[i++];
+	c->broad.rebuilt = w[i++] != 0;
+	c->narrow_tests = (long)w[i++];
+	for (k = 0; k < CONTACT_NTYPES; k++)
+		c->contacts[k] = (long)w[i++];
+	c->corrections = (long)w[i++];
+	c->passes = (int)w[i++];
+	c->frozen = (long)w[i++];
+	c->unresolved = (long)w[i++];
+	s->nev = (long)w[i++];
+}
+
+_Static_assert(NSTAT == 15 + HASH_HIST + CONTACT_NTYPES + 5, "NSTAT counts stat_words");
+
+/* Event columns: step offset and node (u32, delta-coded down the column),
+ * type (u8), other and obstacle (u32, as they are), then q, n, vn_before,
+ * vn_after (f64 bit patterns): EVENT_BYTES in all, each column byte-shuffled.
+ * (Predicting a value from the same node's previous event was tried: the
+ * doubles' low bytes are noise either way, and signs flipping made it 30 %
+ * larger.) */
+static uint64_t
+event_word(const struct contact_event *e, size_t c)
+{
+	switch (c) {
+	case 0: return (uint64_t)(uint32_t)e->other;
+	case 1: return (uint64_t)(uint32_t)e->obstacle;
+	case 2: return dbits(e->q.x);
+	case 3: return dbits(e->q.y);
+	case 4: return dbits(e->q.z);
+	case 5: return dbits(e->n.x);
+	case 6: return dbits(e->n.y);
+	case 7: return dbits(e->n.z);
+	case 8: return dbits(e->vn_before);
+	default: return dbits(e->vn_after);
+	}
+}
+
+static void
+set_event_word(struct contact_event *e, size_t c, uint64_t w)
+{
+	switch (c) {
+	case 0: e->other = (int32_t)(uint32_t)w; break;
+	case 1: e->obstacle = (int32_t)(uint32_t)w; break;
+	case 2: e->q.x = bitsd(w); break;
+	case 3: e->q.y = bitsd(w); break;
+	case 4: e->q.z = bitsd(w); break;
+	case 5: e->n.x = bitsd(w); break;
+	case 6: e->n.y = bitsd(w); break;
+	case 7: e->n.z = bitsd(w); break;
+	case 8: e->vn_before = bitsd(w); break;
+	default: e->vn_after = bitsd(w); break;
+	}
+}
+
+#define EVENT_WORDS 10	/* columns after step, node and type */
+
+static void
+pack_events(const struct contact_event *ev, size_t nev, uint64_t first_step, unsigned char *out,
+    uint32_t *tmp32, uint64_t *tmp64)
+{
+	size_t i, c;
+
+	for (c = 0; c < 2; c++) {
+		for (i = 0; i < nev; i++)
+			tmp32[i] = c == 0 ? (uint32_t)((uint64_t)ev[i].step - first_step) :
+			    (uint32_t)ev[i].node;
+		codec_delta_u32(tmp32, nev);
+		codec_shuffle((const unsigned char *)tmp32, out, nev, 4);
+		out += 4 * nev;
+	}
+	for (i = 0; i < nev; i++)
+		*out++ = (unsigned char)ev[i].type;
+	for (c = 0; c < EVENT_WORDS; c++) {
+		size_t size = c < 2 ? 4 : 8;
+
+		for (i = 0; i < nev; i++) {
+			uint64_t w = event_word(&ev[i], c);
+
+			if (size == 4)
+				tmp32[i] = (uint32_t)w;
+			else
+				tmp64[i] = w;
+		}
+		if (size == 4)
+			codec_shuffle((const unsigned char *)tmp32, out, nev, 4);
+		else
+			codec_shuffle((const unsigned char *)tmp64, out, nev, 8);
+		out += size * nev;
+	}
+}
+
+static int
+flush_steps(struct replay_writer *w, struct drape_err *err)
+{
+	size_t k = w->nsteps, nev = w->nev, i, len = 8 + 8 * NSTAT * k + EVENT_BYTES * nev;
+	uint64_t *words = NULL, *tmp64 = NULL, first;
+	uint32_t *tmp32 = NULL;
+	int rc = -1, c;
+
+	if (k == 0)
+		return 0;
+	first = (uint64_t)w->steps[0].step;
+	if (grow(&w->buf, &w->bufcap, len) != 0 ||
+	    (words = malloc(k * NSTAT * sizeof *words)) == NULL ||
+	    (tmp32 = malloc((nev + 1) * sizeof *tmp32)) == NULL ||
+	    (tmp64 = malloc((nev > k ? nev : k) * sizeof *tmp64)) == NULL) {
+		err_set(err, "%s: out of memory", w->path);
+		goto out;
+	}
+	put32(w->buf, (uint32_t)nev);
+	put32(w->buf + 4, 0);
+	for (i = 0; i < k; i++) {
+		uint64_t row[NSTAT];
+
+		stat_words(&w->steps[i], row);
+		for (c = 0; c < NSTAT; c++)
+			words[(size_t)c * k + i] = row[c];
+	}
+	for (c = 0; c < NSTAT; c++)
+		pack_col64(words + (size_t)c * k, k, w->buf + 8 + 8 * (size_t)c * k);
+	pack_events(w->ev, nev, first, w->buf + 8 + 8 * NSTAT * k, tmp32, tmp64);
+	rc = write_chunk(w, REPLAY_STEPS, first, (uint32_t)k, w->buf, len, STEPS_LEVEL,
+	    err);
+out:
+	free(words);
+	free(tmp32);
+	free(tmp64);
+	w->nsteps = 0;
+	w->nev = 0;
+	return rc;
+}
+
+int
+replay_write_step(struct replay_writer *w, const struct replay_step *s,
+    const struct contact_event *ev, struct drape_err *err)
+{
+	size_t nev = (size_t)s->nev;
+
+	if (nev > 0 && w->nev + nev > w->evcap) {
+		size_t cap = w->evcap ? w->evcap : 1024;
+		struct contact_event *p;
+
+		while (cap < w->nev + nev)
+			cap *= 2;
+		if ((p = realloc(w->ev, cap * sizeof *p)) == NULL) {
+			err_set(err, "%s: out of memory", w->path);
+			return -1;
+		}
+		w->ev = p;
+		w->evcap = cap;
+	}
+	if (nev > 0) {
+		memcpy(w->ev + w->nev, ev, nev * sizeof *ev);
+		w->nev += nev;
+	}
+	w->steps[w->nsteps++] = *s;
+	if (w->nsteps == w->steps_per_chunk || w->nev >= EVENTS_PER_CHUNK)
+		return flush_steps(w, err);
+	return 0;
+}
+
+int
+replay_writer_close(struct replay_writer *w, struct drape_err *err)
+{
+	struct drape_err e2;
+	uint64_t index_off;
+	size_t i;
+	int rc = 0;
+
+	if (w->f == NULL)
+		return 0;
+	if (!w->failed) {
+		if (flush_frames(w, err) != 0 || flush_steps(w, err) != 0)
+			rc = -1;
+	}
+	if (rc == 0 && !w->failed) {
+		index_off = w->bytes;
+		if (grow(&w->buf, &w->bufcap, 16 * w->nkey + 1) != 0) {
+			err_set(err, "%s: out of memory", w->path);
+			rc = -1;
+		} else {
+			for (i = 0; i < w->nkey; i++) {
+				put64(w->buf + 16 * i, w->kstep[i]);
+				put64(w->buf + 16 * i + 8, w->koff[i]);
+			}
+			errno = 0;
+			if (write_chunk(w, REPLAY_INDEX, 0, (uint32_t)w->nkey, w->buf, 16 * w->nkey,
+			    Z_BEST_COMPRESSION, err) != 0)
+				rc = -1;
+			else if (fseek(w->f, 0, SEEK_SET) != 0)
+				rc = write_fail(w, err);
+			else if (write_header(w, REPLAY_CLOSED, index_off, err) != 0)
+				rc = -1;
+		}
+	}
+	errno = 0;
+	if (fclose(w->f) != 0 && rc == 0) {
+		err_set(&e2, "%s: write failed: %s", w->path, errno ? strerror(errno) : "I/O error");
+		if (err != NULL)
+			*err = e2;
+		rc = -1;
+	}
+	free(w->path);
+	free(w->fx);
+	free(w->fstep);
+	free(w->ft);
+	free(w->steps);
+	free(w->ev);
+	free(w->kstep);
+	free(w->koff);
+	free(w->buf);
+	free(w->zbuf);
+	memset(w, 0, sizeof *w);
+	return rc;
+}
+
+/* ---- reader ---- */
+
+/* Reads n bytes at off; 0, or -1 past the end or on an I/O error. */
+static int
+read_at(const struct replay *r, uint64_t off, void *buf, size_t n)
+{
+	if (off > r->len || n > r->len - off)
+		return -1;
+	if (r->mem != NULL) {
+		memcpy(buf, r->mem + off, n);
+		return 0;
+	}
+	if (fseeko(r->f, (off_t)off, SEEK_SET) != 0 || fread(buf, 1, n, r->f) != n)
+		return -1;
+	return 0;
+}
+
+/* The payload size a chunk header must have, checked before anything is
+ * allocated for it: 0 if it is acceptable. */
+static int
+check_chunk_header(const struct replay *r, const struct replay_chunk_header *h)
+{
+	uint64_t n = r->hdr.nodes, raw = h->raw_len, need;
+
+	if (memcmp(h->magic, chunk_magic, 4) != 0)
+		return -1;
+	switch (h->kind) {
+	case REPLAY_META:
+		if (h->count != 1 || raw < META_FIXED || raw > MAX_META_RAW)
+			return -1;
+		break;
+	case REPLAY_FRAMES:
+		if (h->count < 1 || h->count > MAX_FRAMES_CHUNK ||
+		    raw != (uint64_t)h->count * (16 + 12 * n))
+			return -1;
+		break;
+	case REPLAY_KEYFRAME:
+		if (h->count != 1 || raw != 32 + 48 * n)
+			return -1;
+		break;
+	case REPLAY_STEPS:
+		need = 8 + 8 * NSTAT * (uint64_t)h->count;
+		if (h->count < 1 || h->count > MAX_STEPS_CHUNK || raw < need ||
+		    (raw - need) % EVENT_BYTES != 0 || raw > MAX_STEPS_RAW)
+			return -1;
+		break;
+	case REPLAY_INDEX:
+		if (h->count > MAX_INDEX || raw != 16 * (uint64_t)h->count)
+			return -1;
+		break;
+	default:
+		return -1;
+	}
+	/* deflate output never exceeds compressBound; more is not deflate */
+	if (h->comp_len > compressBound(h->raw_len) + 64)
+		return -1;
+	return 0;
+}
+
+/* The CRC of a chunk whose header is at off: 0 if it matches. */
+static int
+check_chunk_crc(const struct replay *r, uint64_t off, const struct replay_chunk_header *h)
+{
+	unsigned char buf[65536];
+	uint32_t crc = crc_of((uint32_t)crc32(0, Z_NULL, 0), h,
+	    offsetof(struct replay_chunk_header, crc));
+	uint64_t pos = off + sizeof *h, end = pos + h->comp_len;
+
+	while (pos < end) {
+		size_t k = end - pos > sizeof buf ? sizeof buf : (size_t)(end - pos);
+
+		if (read_at(r, pos, buf, k) != 0)
+			return -1;
+		crc = crc_of(crc, buf, k);
+		pos += k;
+	}
+	return crc == h->crc ? 0 : -1;
+}
+
+/* 0 if a whole, intact chunk starts at off. */
+static int
+chunk_at(const struct replay *r, uint64_t off, struct replay_chunk_header *h)
+{
+	if (off > r->len || r->len - off < sizeof *h || read_at(r, off, h, sizeof *h) != 0)
+		return -1;
+	if (check_chunk_header(r, h) != 0 || h->comp_len > r->len - off - sizeof *h)
+		return -1;
+	return check_chunk_crc(r, off, h);
+}
+
+/* The next offset after `from` where an intact chunk starts, or 0. */
+static uint64_t
+resync(const struct replay *r, uint64_t from)
+{
+	unsigned char buf[65536];
+	struct replay_chunk_header h;
+	uint64_t pos = from;
+
+	while (pos + sizeof h <= r->len) {
+		size_t k = r->len - pos > sizeof buf ? sizeof buf : (size_t)(r->len - pos), i;
+
+		if (read_at(r, pos, buf, k) != 0)
+			return 0;
+		for (i = 0; i + 4 <= k; i++)
+			if (memcmp(buf + i, chunk_magic, 4) == 0 && chunk_at(r, pos + i, &h) == 0)
+				return pos + i;
+		if (k < sizeof buf)
+			break;
+		pos += k - 3;
+	}
+	return 0;
+}
+
+static int
+add_chunk(struct replay *r, const struct replay_chunk_header *h, uint64_t off, size_t *cap)
+{
+	struct replay_chunk *c;
+
+	if (r->nchunks == *cap) {
+		size_t ncap = *cap ? 2 * *cap : 64;
+
+		if ((c = realloc(r->chunk, ncap * sizeof *c)) == NULL)
+			return -1;
+		r->chunk = c;
+		*cap = ncap;
+	}
+	c = &r->chunk[r->nchunks++];
+	c->kind = h->kind;
+	c->first_step = h->first_step;
+	c->count = h->count;
+	c->comp_len = h->comp_len;
+	c->raw_len = h->raw_len;
+	c->offset = off;
+	c->ordinal = r->seen;
+	return 0;
+}
+
+static void
+note_bad(struct replay *r)
+{
+	if (r->nbad < sizeof r->bad_ordinal / sizeof r->bad_ordinal[0])
+		r->bad_ordinal[r->nbad] = r->seen;
+	r->nbad++;
+}
+
+/* Walks the chunks after the header: whole ones are kept, damaged ones
+ * counted and skipped, a cut noted. */
+static int
+scan(struct replay *r)
+{
+	struct replay_chunk_header h;
+	uint64_t off = sizeof r->hdr, next;
+	size_t cap = 0;
+
+	while (off < r->len) {
+		if (chunk_at(r, off, &h) == 0) {
+			if (add_chunk(r, &h, off, &cap) != 0)
+				return -1;
+			r->seen++;
+			off += sizeof h + h.comp_len;
+			continue;
+		}
+		if ((next = resync(r, off + 1)) == 0) {
+			/* nothing whole after it: the file was cut here */
+			r->cut = true;
+			break;
+		}
+		note_bad(r);
+		r->seen++;
+		off = next;
+	}
+	r->cut_offset = off;
+	return 0;
+}
+
+/* Inflates chunk c into a new buffer of c->raw_len bytes. */
+static int
+inflate_chunk(const struct replay *r, const struct replay_chunk *c, unsigned char **out,
+    struct drape_err *err)
+{
+	struct replay_chunk_header h;
+	unsigned char *z, *raw;
+	uLongf len = c->raw_len;
+
+	*out = NULL;
+	if (chunk_at(r, c->offset, &h) != 0 || h.kind != c->kind || h.raw_len != c->raw_len) {
+		err_set(err, "chunk %zu: changed or unreadable since the file was opened", c->ordinal);
+		return -1;
+	}
+	if ((z = malloc(c->comp_len + 1)) == NULL || (raw = malloc((size_t)c->raw_len + 1)) == NULL) {
+		free(z);
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		return -1;
+	}
+	if (read_at(r, c->offset + sizeof h, z, c->comp_len) != 0 ||
+	    uncompress(raw, &len, z, c->comp_len) != Z_OK || len != c->raw_len) {
+		free(z);
+		free(raw);
+		err_set(err, "chunk %zu: does not inflate to its stated %u bytes", c->ordinal,
+		    c->raw_len);
+		return -1;
+	}
+	free(z);
+	*out = raw;
+	return 0;
+}
+
+static char *
+take_string(const unsigned char *p, size_t n)
+{
+	char *s = malloc(n + 1);
+
+	if (s != NULL) {
+		memcpy(s, p, n);
+		s[n] = '\0';
+	}
+	return s;
+}
+
+static int
+read_meta(struct replay *r, const struct replay_chunk *c, struct drape_err *err)
+{
+	struct replay_meta *m = &r->meta;
+	unsigned char *p;
+	uint64_t ln, lp, lt, ntri, o = META_FIXED;
+	size_t i;
+
+	if (inflate_chunk(r, c, &p, err) != 0)
+		return -1;
+	m->nodes = get32(p);
+	m->triangles = get32(p + 4);
+	m->integrator = (int)get32(p + 8);
+	m->duration = bitsd(get64(p + 16));
+	m->dt = bitsd(get64(p + 24));
+	m->dt_set = bitsd(get64(p + 32));
+	m->output_rate = bitsd(get64(p + 40));
+	m->keyframe_every = (long)(get64(p + 48) & 0x7fffffffffffffffULL);
+	ln = get32(p + 56);
+	lp = get32(p + 60);
+	lt = get32(p + 64);
+	ntri = m->triangles;
+	if (m->nodes != r->hdr.nodes || m->triangles != r->hdr.triangles ||
+	    META_FIXED + ln + lp + lt + 12 * ntri != c->raw_len) {
+		err_set(err, "the scene chunk disagrees with the header or its own length");
+		free(p);
+		return -1;
+	}
+	if ((m->name = take_string(p + o, ln)) == NULL ||
+	    (m->path = take_string(p + o + ln, lp)) == NULL ||
+	    (m->text = take_string(p + o + ln + lp, lt)) == NULL ||
+	    (m->tri = malloc(12 * ntri + 1)) == NULL) {
+		err_set(err, "out of memory");
+		free(p);
+		return -1;
+	}
+	o += ln + lp + lt;
+	memcpy(m->tri, p + o, 12 * ntri);
+	free(p);
+	for (i = 0; i < 3 * ntri; i++)
+		if (m->tri[i] < 0 || (uint32_t)m->tri[i] >= m->nodes) {
+			err_set(err, "the scene chunk has a triangle with node %d of %u", m->tri[i],
+			    m->nodes);
+			return -1;
+		}
+	if (strlen(m->text) != lt || strlen(m->name) != ln || strlen(m->path) != lp) {
+		err_set(err, "the scene chunk holds a NUL byte in its text");
+		return -1;
+	}
+	return 0;
+}
+
+static int
+open_common(struct replay *r, const char *name, struct drape_err *err)
+{
+	struct drape_err e;
+	size_t i;
+	long meta = -1;
+
+	if (r->len < sizeof r->hdr || read_at(r, 0, &r->hdr, sizeof r->hdr) != 0) {
+		err_set(err, "%s: not a drape replay: shorter than its %zu-byte header", name,
+		    sizeof r->hdr);
+		return -1;
+	}
+	if (memcmp(r->hdr.magic, file_magic, 8) != 0) {
+		err_set(err, "%s: not a drape replay: expected the magic 'DRAPERPL'", name);
+		return -1;
+	}
+	if (r->hdr.crc != header_crc(&r->hdr)) {
+		err_set(err, "%s: the replay header fails its CRC", name);
+		return -1;
+	}
+	if (r->hdr.version != REPLAY_VERSION) {
+		err_set(err, "%s: replay version %u; this drape reads version %d", name,
+		    r->hdr.version, REPLAY_VERSION);
+		return -1;
+	}
+	if (r->hdr.nodes < 1 || r->hdr.nodes > MAX_NODES || r->hdr.triangles > MAX_TRIANGLES) {
+		err_set(err, "%s: %u nodes and %u triangles: expected 1 to %u nodes", name,
+		    r->hdr.nodes, r->hdr.triangles, MAX_NODES);
+		return -1;
+	}
+	if (scan(r) != 0) {
+		err_set(err, "%s: out of memory", name);
+		return -1;
+	}
+	r->last_step = -1;
+	for (i = 0; i < r->nchunks; i++) {
+		const struct replay_chunk *c = &r->chunk[i];
+
+		if (c->kind == REPLAY_META && meta < 0)
+			meta = (long)i;
+		else if (c->kind == REPLAY_FRAMES)
+			r->nframes += c->count;
+		else if (c->kind == REPLAY_KEYFRAME)
+			r->nkeyframes++;
+		else if (c->kind == REPLAY_STEPS) {
+			r->nstep_chunks++;
+			if (c->first_step < (uint64_t)LONG_MAX - c->count &&
+			    (long)(c->first_step + c->count - 1) > r->last_step)
+				r->last_step = (long)(c->first_step + c->count - 1);
+		}
+	}
+	if (meta < 0) {
+		err_set(err, "%s: no intact scene chunk: %s", name,
+		    r->cut ? "the file was cut before it" : "it is damaged");
+		return -1;
+	}
+	if (read_meta(r, &r->chunk[meta], &e) != 0) {
+		err_set(err, "%s: %s", name, e.msg);
+		return -1;
+	}
+	return 0;
+}
+
+int
+replay_open(struct replay *r, const char *path, struct drape_err *err)
+{
+	memset(r, 0, sizeof *r);
+	if ((r->f = fopen(path, "rb")) == NULL) {
+		err_set(err, "%s: cannot open: %s", path, strerror(errno));
+		return -1;
+	}
+	if (fseeko(r->f, 0, SEEK_END) != 0 || ftello(r->f) < 0) {
+		err_set(err, "%s: cannot read: %s", path, strerror(errno));
+		replay_close(r);
+		return -1;
+	}
+	r->len = (uint64_t)ftello(r->f);
+	if (open_common(r, path, err) != 0) {
+		replay_close(r);
+		return -1;
+	}
+	return 0;
+}
+
+int
+replay_open_mem(struct replay *r, const void *buf, size_t len, struct drape_err *err)
+{
+	static const unsigned char empty[1];
+
+	memset(r, 0, sizeof *r);
+	r->mem = buf != NULL ? buf : empty;
+	r->len = buf != NULL ? len : 0;
+	if (open_common(r, "replay", err) != 0) {
+		replay_close(r);
+		return -1;
+	}
+	return 0;
+}
+
+void
+replay_close(struct replay *r)
+{
+	if (r->f != NULL)
+		fclose(r->f);
+	free(r->chunk);
+	free(r->meta.name);
+	free(r->meta.path);
+	free(r->meta.text);
+	free(r->meta.tri);
+	memset(r, 0, sizeof *r);
+}
+
+int
+replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
+    struct drape_err *err)
+{
+	const struct replay_chunk *c = &r->chunk[i];
+	size_t k = c->count, n3 = 3 * (size_t)r->hdr.nodes, j;
+	unsigned char *p;
+	uint32_t *tmp;
+
+	memset(fr, 0, sizeof *fr);
+	if (c->kind != REPLAY_FRAMES) {
+		err_set(err, "chunk %zu: not frames", c->ordinal);
+		return -1;
+	}
+	if (inflate_chunk(r, c, &p, err) != 0)
+		return -1;
+	fr->count = k;
+	if ((fr->step = malloc(k * sizeof *fr->step)) == NULL ||
+	    (fr->t = malloc(k * sizeof *fr->t)) == NULL ||
+	    (fr->x = malloc(k * n3 * sizeof *fr->x)) == NULL ||
+	    (tmp = malloc(k * n3 * sizeof *tmp)) == NULL) {
+		free(p);
+		replay_frames_free(fr);
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		return -1;
+	}
+	for (j = 0; j < k; j++) {
+		fr->step[j] = (long)(get64(p + 8 * j) & 0x7fffffffffffffffULL);
+		fr->t[j] = bitsd(get64(p + 8 * (k + j)));
+	}
+	frames_decode(p + 16 * k, k, n3, tmp, fr->x);
+	free(tmp);
+	free(p);
+	return 0;
+}
+
+int
+replay_read_keyframe(const struct replay *r, size_t i, struct replay_keyframe *kf,
+    struct drape_err *err)
+{
+	const struct replay_chunk *c = &r->chunk[i];
+	size_t n6 = 6 * (size_t)r->hdr.nodes;
+	unsigned char *p;
+
+	memset(kf, 0, sizeof *kf);
+	if (c->kind != REPLAY_KEYFRAME) {
+		err_set(err, "chunk %zu: not a keyframe", c->ordinal);
+		return -1;
+	}
+	if (inflate_chunk(r, c, &p, err) != 0)
+		return -1;
+	if ((kf->y = malloc(n6 * sizeof *kf->y)) == NULL) {
+		free(p);
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		return -1;
+	}
+	kf->step = (long)(get64(p) & 0x7fffffffffffffffULL);
+	kf->t = bitsd(get64(p + 8));
+	kf->dt = bitsd(get64(p + 16));
+	kf->hash = get64(p + 24);
+	codec_unshuffle(p + 32, (unsigned char *)kf->y, n6, 8);
+	free(p);
+	return 0;
+}
+
+static int
+unpack_events(const unsigned char *in, size_t nev, uint64_t first_step, uint64_t nsteps,
+    uint32_t nodes, struct contact_event *ev, uint32_t *tmp32, uint64_t *tmp64)
+{
+	size_t i, c;
+
+	for (c = 0; c < 2; c++) {
+		codec_unshuffle(in, (unsigned char *)tmp32, nev, 4);
+		codec_undelta_u32(tmp32, nev);
+		for (i = 0; i < nev; i++) {
+			if (tmp32[i] >= (c == 0 ? nsteps : nodes))
+				return -1;
+			if (c == 0)
+				ev[i].step = (long)(first_step + tmp32[i]);
+			else
+				ev[i].node = (int)tmp32[i];
+		}
+		in += 4 * nev;
+	}
+	for (i = 0; i < nev; i++) {
+		if (in[i] >= CONTACT_NTYPES)
+			return -1;
+		ev[i].type = (enum contact_type)in[i];
+	}
+	in += nev;
+	for (c = 0; c < EVENT_WORDS; c++) {
+		size_t size = c < 2 ? 4 : 8;
+
+		if (size == 4)
+			codec_unshuffle(in, (unsigned char *)tmp32, nev, 4);
+		else
+			codec_unshuffle(in, (unsigned char *)tmp64, nev, 8);
+		for (i = 0; i < nev; i++)
+			set_event_word(&ev[i], c, size == 4 ? tmp32[i] : tmp64[i]);
+		in += size * nev;
+	}
+	return 0;
+}
+
+int
+replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
+    struct drape_err *err)
+{
+	const struct replay_chunk *c = &r->chunk[i];
+	size_t k = c->count, nev, j, col, total = 0;
+	unsigned char *p;
+	uint64_t *words = NULL, *tmp64 = NULL;
+	uint32_t *tmp32 = NULL;
+	int rc = -1;
+
+	memset(ss, 0, sizeof *ss);
+	if (c->kind != REPLAY_STEPS || c->first_step > (uint64_t)LONG_MAX - k) {
+		err_set(err, "chunk %zu: not steps", c->ordinal);
+		return -1;
+	}
+	if (inflate_chunk(r, c, &p, err) != 0)
+		return -1;
+	nev = get32(p);
+	if (8 + 8 * NSTAT * (uint64_t)k + EVENT_BYTES * (uint64_t)nev != c->raw_len) {
+		err_set(err, "chunk %zu: %zu events do not fill its %u bytes", c->ordinal, nev,
+		    c->raw_len);
+		goto out;
+	}
+	ss->count = k;
+	ss->nev = nev;
+	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL ||
+	    (ss->ev = malloc((nev + 1) * sizeof *ss->ev)) == NULL ||
+	    (words = malloc(k * NSTAT * sizeof *words)) == NULL ||
+	    (tmp32 = malloc((nev + 1) * sizeof *tmp32)) == NULL ||
+	    (tmp64 = malloc((nev + 1) * sizeof *tmp64)) == NULL) {
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		goto out;
+	}
+	for (col = 0; col < NSTAT; col++)
+		unpack_col64(p + 8 + 8 * col * k, k, words + col * k);
+	for (j = 0; j < k; j++) {
+		uint64_t row[NSTAT];
+
+		for (col = 0; col < NSTAT; col++)
+			row[col] = words[col * k + j];
+		stat_from_words(row, &ss->s[j]);
+		if (ss->s[j].step != (long)(c->first_step + j) || ss->s[j].nev < 0 ||
+		    (uint64_t)ss->s[j].nev > nev - total) {
+			err_set(err, "chunk %zu: step %zu's record is inconsistent", c->ordinal, j);
+			goto out;
+		}
+		total += (size_t)ss->s[j].nev;
+	}
+	if (total != nev || unpack_events(p + 8 + 8 * NSTAT * k, nev, c->first_step, k,
+	    r->hdr.nodes, ss->ev, tmp32, tmp64) != 0) {
+		err_set(err, "chunk %zu: its events do not match its steps", c->ordinal);
+		goto out;
+	}
+	rc = 0;
+out:
+	free(p);
+	free(words);
+	free(tmp32);
+	free(tmp64);
+	if (rc != 0)
+		replay_steps_free(ss);
+	return rc;
+}
+
+void
+replay_frames_free(struct replay_frames *fr)
+{
+	free(fr->step);
+	free(fr->t);
+	free(fr->x);
+	memset(fr, 0, sizeof *fr);
+}
+
+void
+replay_keyframe_free(struct replay_keyframe *kf)
+{
+	free(kf->y);
+	memset(kf, 0, sizeof *kf);
+}
+
+void
+replay_steps_free(struct replay_steps *ss)
+{
+	free(ss->s);
+	free(ss->ev);
+	memset(ss, 0, sizeof *ss);
+}
+
+long
+replay_find_keyframe(const struct replay *r, long step)
+{
+	long best = -1;
+	size_t i;
+
+	for (i = 0; i < r->nchunks; i++) {
+		const struct replay_chunk *c = &r->chunk[i];
+
+		if (c->kind != REPLAY_KEYFRAME || c->first_step > (uint64_t)LONG_MAX)
+			continue;
+		if (step >= 0 && (long)c->first_step > step)
+			continue;
+		if (best < 0 || c->first_step >= r->chunk[best].first_step)
+			best = (long)i;
+	}
+	return best;
+}

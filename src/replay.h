@@ -1,0 +1,186 @@
+/* replay.h: replay files (drape-replay(5)): a header, then chunks each
+ * compressed on its own and guarded by a CRC-32: the scene and its
+ * resolved options, frames of float32 positions at the output rate,
+ * keyframes of the full double state, every step's statistics and
+ * collision events, and a closing index of the keyframes.
+ *
+ * The writer observes a run from outside the stepper: after each step it
+ * is given the state and that step's events and statistics. The reader
+ * treats a file as hostile: every length is checked before it is used, a
+ * chunk that fails its CRC is counted and skipped, and a file cut anywhere
+ * gives its whole chunks. Nothing here prints. */
+#ifndef DRAPE_REPLAY_H
+#define DRAPE_REPLAY_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "collide.h"
+#include "err.h"
+
+#define REPLAY_VERSION 1
+
+enum replay_kind {
+	REPLAY_META = 1,	/* scene text and resolved options */
+	REPLAY_FRAMES = 2,	/* float32 positions at the output rate */
+	REPLAY_KEYFRAME = 3,	/* the double state y, t, step, dt */
+	REPLAY_STEPS = 4,	/* statistics and events of consecutive steps */
+	REPLAY_INDEX = 5,	/* the keyframes' steps and offsets, at close */
+};
+
+/* On-disk structs (little-endian; configure refuses big-endian hosts). */
+struct replay_file_header {
+	char magic[8];		/* "DRAPERPL" */
+	uint32_t version;
+	uint32_t flags;		/* REPLAY_CLOSED once closed cleanly */
+	uint32_t nodes, triangles;
+	uint64_t index_offset;	/* of the index chunk, 0 until closed */
+	uint8_t reserved[28];
+	uint32_t crc;		/* CRC-32 of the 60 bytes before it */
+};
+#define REPLAY_CLOSED 1u
+
+struct replay_chunk_header {
+	char magic[4];		/* "CHNK" */
+	uint32_t kind;
+	uint64_t first_step;
+	uint32_t count;		/* frames, 1 keyframe, steps, index entries */
+	uint32_t comp_len, raw_len;	/* payload, deflated and inflated */
+	uint32_t crc;		/* CRC-32 of the 28 bytes before it, then the payload */
+};
+
+_Static_assert(sizeof(struct replay_file_header) == 64, "replay header is 64 bytes");
+_Static_assert(sizeof(struct replay_chunk_header) == 32, "chunk header is 32 bytes");
+
+/* What a run was made of: enough to make it again. */
+struct replay_meta {
+	char *name, *path, *text;	/* scene name, its path when recorded, its text */
+	double duration;	/* resolved --until */
+	double dt;		/* resolved --dt: 0 for auto */
+	int integrator;		/* enum integrator_kind */
+	double dt_set;		/* the step it resolved to */
+	double output_rate;	/* frames per second of simulated time */
+	long keyframe_every;	/* steps between keyframes */
+	uint32_t nodes, triangles;
+	int *tri;		/* 3 per triangle, the cloth's, as OBJ faces */
+};
+
+/* Per step: what struct collide_stats says, and when. */
+struct replay_step {
+	long step;
+	double t, dt;		/* after the step, and the step to try next */
+	struct collide_stats col;
+	long nev;		/* events of this step */
+};
+
+struct replay_writer {
+	FILE *f;
+	char *path;
+	uint32_t nodes, triangles;
+	long keyframe_every;
+	bool failed;		/* a write failed: stop writing */
+	/* pending frames */
+	float *fx;
+	uint64_t *fstep;
+	double *ft;
+	size_t nframes, frames_per_chunk;
+	/* pending steps */
+	struct replay_step *steps;
+	size_t nsteps, steps_per_chunk;
+	struct contact_event *ev;
+	size_t nev, evcap;
+	/* keyframes written, for the index */
+	uint64_t *kstep, *koff;
+	size_t nkey, keycap;
+	unsigned char *buf, *zbuf;	/* scratch, grown as needed */
+	size_t bufcap, zbufcap;
+	uint64_t bytes;		/* written so far */
+};
+
+int replay_writer_open(struct replay_writer *w, const char *path, const struct replay_meta *m,
+    struct drape_err *err);
+/* x is the positions of the nodes (3 doubles each), y the whole state. */
+int replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
+    struct drape_err *err);
+int replay_write_keyframe(struct replay_writer *w, long step, double t, double dt,
+    const double *y, uint64_t hash, struct drape_err *err);
+int replay_write_step(struct replay_writer *w, const struct replay_step *s,
+    const struct contact_event *ev, struct drape_err *err);
+/* Writes what is pending, the index and the closed flag; frees w. Returns
+ * 0, or -1 with a message (the file is then readable up to what was
+ * written). */
+int replay_writer_close(struct replay_writer *w, struct drape_err *err);
+
+/* ---- reading ---- */
+
+struct replay_chunk {
+	uint32_t kind;
+	uint64_t first_step;
+	uint32_t count, comp_len, raw_len;
+	uint64_t offset;	/* of its header */
+	size_t ordinal;		/* its place among the file's chunks, from 0 */
+};
+
+struct replay_keyframe {
+	long step;
+	double t, dt;
+	uint64_t hash;		/* stepper_hash at the time */
+	double *y;		/* 6 * nodes */
+};
+
+struct replay_frames {
+	size_t count;
+	long *step;
+	double *t;
+	float *x;		/* count * 3 * nodes */
+};
+
+struct replay_steps {
+	size_t count, nev;
+	struct replay_step *s;
+	struct contact_event *ev;
+};
+
+struct replay {
+	FILE *f;		/* or mem, len */
+	const unsigned char *mem;
+	uint64_t len;
+	struct replay_file_header hdr;
+	struct replay_meta meta;
+	struct replay_chunk *chunk;	/* the intact chunks, in file order */
+	size_t nchunks;
+	size_t seen;		/* chunks found, intact or not */
+	size_t nbad;		/* chunks that failed their CRC or checks */
+	uint64_t bad_ordinal[8];	/* the first few of them */
+	bool cut;		/* the file ends inside a chunk */
+	uint64_t cut_offset;	/* where the last whole chunk ends */
+	size_t nframes, nkeyframes, nstep_chunks;
+	long last_step;		/* the last step with statistics, -1 for none */
+	long nevents;
+	double last_t;
+};
+
+/* Both return 0, or -1 with a message (no scene chunk, not a replay). A
+ * file with bad or missing chunks opens; see nbad and cut. */
+int replay_open(struct replay *r, const char *path, struct drape_err *err);
+int replay_open_mem(struct replay *r, const void *buf, size_t len, struct drape_err *err);
+void replay_close(struct replay *r);
+
+/* Chunk i (of r->chunk) decoded; each returns 0 or -1 with a message. */
+int replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
+    struct drape_err *err);
+int replay_read_keyframe(const struct replay *r, size_t i, struct replay_keyframe *kf,
+    struct drape_err *err);
+int replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
+    struct drape_err *err);
+void replay_frames_free(struct replay_frames *fr);
+void replay_keyframe_free(struct replay_keyframe *kf);
+void replay_steps_free(struct replay_steps *ss);
+
+/* The intact keyframe chunk with the largest step <= step (step < 0: the
+ * last), or -1 for none. */
+long replay_find_keyframe(const struct replay *r, long step);
+
+#endif

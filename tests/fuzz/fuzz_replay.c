@@ -1,0 +1,50 @@
+/* fuzz_replay.c: the replay reader on arbitrary bytes: open, then decode
+ * every chunk it found intact. libFuzzer's entry point; tests/fuzz/driver.c
+ * runs the seed corpus through it in make check.
+ *
+ * The seeds in corpus/: whole.drr from
+ *	cd tests/fuzz && drape run --record whole.drr --keyframe-every 20 seed.scene
+ * and from it cut.drr (its first 1500 bytes), flipped.drr (bit 4 of byte
+ * 700 flipped) and header-only.drr (its first 64 bytes). */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "replay.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int
+LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+	struct replay r;
+	struct drape_err err;
+	size_t i;
+
+	if (replay_open_mem(&r, data, size, &err) != 0)
+		return 0;
+	for (i = 0; i < r.nchunks; i++) {
+		struct replay_frames fr;
+		struct replay_keyframe kf;
+		struct replay_steps ss;
+
+		switch (r.chunk[i].kind) {
+		case REPLAY_FRAMES:
+			if (replay_read_frames(&r, i, &fr, &err) == 0)
+				replay_frames_free(&fr);
+			break;
+		case REPLAY_KEYFRAME:
+			if (replay_read_keyframe(&r, i, &kf, &err) == 0)
+				replay_keyframe_free(&kf);
+			break;
+		case REPLAY_STEPS:
+			if (replay_read_steps(&r, i, &ss, &err) == 0)
+				replay_steps_free(&ss);
+			break;
+		default:
+			break;
+		}
+	}
+	(void)replay_find_keyframe(&r, -1);
+	replay_close(&r);
+	return 0;
+}

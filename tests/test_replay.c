@@ -1,0 +1,793 @@
+/* test_replay.c: replay files: the frame codec; a round trip (keyframes
+ * bit for bit, frames within float32 rounding, the same events and
+ * statistics); a small replay cut at every byte and with a bit flipped in
+ * every chunk; resuming from every keyframe gives the original state hash;
+ * and, through the binary: info, events --node, PC2 export, resume, a
+ * SIGTERM mid-run, bad arguments, and the shipped replays. */
+#include <signal.h>
+#include <sys/stat.h>
+
+#include "frame_codec.h"
+#include "record.h"
+#include "replay.h"
+#include "testutil.h"
+#include "runbin.h"
+
+static const char tiny_scene[] =
+    "# A 4 x 4 cloth dropped onto the floor: a small replay for the tests.\n"
+    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200\n"
+    "[cloth]\nnodes = 4 4\nspacing = 10 mm\norigin = 0 3 0 mm\norientation = +x +z\n"
+    "weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n"
+    "modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n"
+    "bending_weft = 2 uN*m\nvelocity = 0 -0.3 0 m/s\n"
+    "[plane]\npoint = 0 0 0 m\n"
+    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n";
+
+#define KEY_EVERY 40
+
+/* Everything a recorded run did, kept in memory to compare with. */
+struct truth {
+	long nsteps;		/* steps taken */
+	double *y;		/* the state after each step, (nsteps + 1) * 6n */
+	struct contact_event *ev;
+	size_t nev;
+	struct collide_stats *st;	/* per step */
+	uint64_t hash;		/* at the end */
+	int n;
+};
+
+static char replay_path[700];
+
+static void
+path_in_dir(char *out, size_t len, const char *name)
+{
+	snprintf(out, len, "%s/%s", dir, name);
+}
+
+static void
+record_tiny(struct truth *tr, const char *path)
+{
+	struct scene sc;
+	struct stepper st;
+	struct recorder rec;
+	struct drape_err err;
+	struct blowup bl;
+	size_t n6, cap = 0;
+
+	parse_text(&sc, tiny_scene);
+	init_stepper(&st, &sc);
+	memset(tr, 0, sizeof *tr);
+	tr->n = st.cl.n;
+	n6 = 6 * (size_t)st.cl.n;
+	tr->y = malloc(n6 * sizeof *tr->y);
+	assert_non_null(tr->y);
+	memcpy(tr->y, st.y, n6 * sizeof *tr->y);
+	if (record_open(&rec, path, &st, KEY_EVERY, &err) != 0)
+		fail_msg("record_open: %s", err.msg);
+	while (!stepper_done(&st)) {
+		if (stepper_step(&st, &bl) != 0)
+			fail_msg("blow-up: %s", bl.why);
+		tr->nsteps++;
+		tr->y = realloc(tr->y, (size_t)(tr->nsteps + 1) * n6 * sizeof *tr->y);
+		tr->st = realloc(tr->st, (size_t)tr->nsteps * sizeof *tr->st);
+		assert_true(tr->y != NULL && tr->st != NULL);
+		memcpy(tr->y + (size_t)tr->nsteps * n6, st.y, n6 * sizeof *tr->y);
+		tr->st[tr->nsteps - 1] = st.col.st;
+		if (tr->nev + st.col.nev > cap) {
+			cap = 2 * (tr->nev + st.col.nev);
+			tr->ev = realloc(tr->ev, cap * sizeof *tr->ev);
+			assert_non_null(tr->ev);
+		}
+		if (st.col.nev > 0)
+			memcpy(tr->ev + tr->nev, st.col.ev, st.col.nev * sizeof *tr->ev);
+		tr->nev += st.col.nev;
+		if (record_step(&rec, &st, &err) != 0)
+			fail_msg("record_step: %s", err.msg);
+	}
+	if (record_close(&rec, &st, &err) != 0)
+		fail_msg("record_close: %s", err.msg);
+	tr->hash = stepper_hash(&st);
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+static void
+truth_free(struct truth *tr)
+{
+	free(tr->y);
+	free(tr->ev);
+	free(tr->st);
+}
+
+static unsigned char *
+slurp_file(const char *path, size_t *len)
+{
+	FILE *f = fopen(path, "rb");
+	unsigned char *buf;
+	long n;
+
+	assert_non_null(f);
+	assert_int_equal(fseek(f, 0, SEEK_END), 0);
+	n = ftell(f);
+	assert_true(n > 0);
+	rewind(f);
+	buf = malloc((size_t)n);
+	assert_non_null(buf);
+	assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
+	fclose(f);
+	*len = (size_t)n;
+	return buf;
+}
+
+static void
+codec_round_trip(void **state)
+{
+	float x[2 * 9], back[2 * 9];
+	uint32_t tmp[2 * 9];
+	unsigned char packed[4 * 2 * 9];
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < 18; i++)
+		x[i] = (float)((double)i * 0.37 - 2.5 + (i % 5 == 0 ? -1e-30 : 0));
+	x[4] = -0.0f;
+	frames_encode(x, 2, 9, tmp, packed);
+	frames_decode(packed, 2, 9, tmp, back);
+	assert_memory_equal(x, back, sizeof x);
+}
+
+static int
+events_equal(const struct contact_event *a, const struct contact_event *b)
+{
+	return a->step == b->step && a->node == b->node && a->type == b->type &&
+	    a->other == b->other && a->obstacle == b->obstacle &&
+	    memcmp(&a->q, &b->q, sizeof a->q) == 0 && memcmp(&a->n, &b->n, sizeof a->n) == 0 &&
+	    memcmp(&a->vn_before, &b->vn_before, sizeof a->vn_before) == 0 &&
+	    memcmp(&a->vn_after, &b->vn_after, sizeof a->vn_after) == 0;
+}
+
+static void
+round_trip(void **state)
+{
+	struct truth tr;
+	struct replay r;
+	struct drape_err err;
+	size_t i, j, n6, nev = 0, nkey = 0, nframes = 0;
+	long steps = 0;
+
+	(void)state;
+	path_in_dir(replay_path, sizeof replay_path, "tiny.drr");
+	record_tiny(&tr, replay_path);
+	assert_true(tr.nev > 100);	/* the floor is hit */
+	n6 = 6 * (size_t)tr.n;
+	if (replay_open(&r, replay_path, &err) != 0)
+		fail_msg("replay_open: %s", err.msg);
+	assert_true(r.hdr.flags & REPLAY_CLOSED);
+	assert_int_equal(r.nbad, 0);
+	assert_false(r.cut);
+	assert_int_equal(r.meta.nodes, tr.n);
+	assert_string_equal(r.meta.text, tiny_scene);
+	assert_string_equal(r.meta.name, "tiny");
+	assert_int_equal(r.last_step, tr.nsteps - 1);
+	for (i = 0; i < r.nchunks; i++) {
+		const struct replay_chunk *c = &r.chunk[i];
+
+		if (c->kind == REPLAY_KEYFRAME) {
+			struct replay_keyframe kf;
+
+			if (replay_read_keyframe(&r, i, &kf, &err) != 0)
+				fail_msg("%s", err.msg);
+			assert_true(kf.step >= 0 && kf.step <= tr.nsteps);
+			assert_true(kf.step % KEY_EVERY == 0 || kf.step == tr.nsteps);
+			assert_memory_equal(kf.y, tr.y + (size_t)kf.step * n6, n6 * sizeof *kf.y);
+			replay_keyframe_free(&kf);
+			nkey++;
+		} else if (c->kind == REPLAY_FRAMES) {
+			struct replay_frames fr;
+
+			if (replay_read_frames(&r, i, &fr, &err) != 0)
+				fail_msg("%s", err.msg);
+			for (j = 0; j < fr.count; j++) {
+				const double *y = tr.y + (size_t)fr.step[j] * n6;
+				size_t k;
+
+				for (k = 0; k < n6 / 2; k++) {
+					assert_true(fr.x[j * n6 / 2 + k] == (float)y[k]);
+					assert_true(fabs(fr.x[j * n6 / 2 + k] - y[k]) <=
+					    fabs(y[k]) * 0x1p-24 + 1e-45);
+				}
+				/* frame k at t = k / rate, the first step reaching it */
+				assert_true(fr.t[j] * 200 >= (double)nframes - 1e-6);
+				nframes++;
+			}
+			replay_frames_free(&fr);
+		} else if (c->kind == REPLAY_STEPS) {
+			struct replay_steps ss;
+
+			if (replay_read_steps(&r, i, &ss, &err) != 0)
+				fail_msg("%s", err.msg);
+			for (j = 0; j < ss.count; j++) {
+				const struct collide_stats *a = &ss.s[j].col, *b = &tr.st[ss.s[j].step];
+
+				assert_int_equal(ss.s[j].step, steps);
+				assert_int_equal(a->narrow_tests, b->narrow_tests);
+				assert_int_equal(a->contacts[CONTACT_OBSTACLE], b->contacts[CONTACT_OBSTACLE]);
+				assert_int_equal(a->corrections, b->corrections);
+				assert_int_equal(a->passes, b->passes);
+				assert_int_equal(a->broad.vt_pairs, b->broad.vt_pairs);
+				assert_int_equal(a->broad.hash.cubes, b->broad.hash.cubes);
+				steps++;
+			}
+			for (j = 0; j < ss.nev; j++)
+				assert_true(events_equal(&ss.ev[j], &tr.ev[nev + j]));
+			nev += ss.nev;
+			replay_steps_free(&ss);
+		}
+	}
+	assert_int_equal(steps, tr.nsteps);
+	assert_int_equal(nev, tr.nev);
+	assert_int_equal(nkey, r.nkeyframes);
+	assert_int_equal(nkey, (size_t)(tr.nsteps / KEY_EVERY) + 1 + (tr.nsteps % KEY_EVERY != 0));
+	assert_int_equal(nframes, r.nframes);
+	assert_int_equal(nframes, 6);	/* 0, 5, ..., 25 ms */
+	replay_close(&r);
+	truth_free(&tr);
+}
+
+/* Every chunk of a file read back: no crash, and each one decodes. */
+static void
+read_all(const struct replay *r)
+{
+	struct drape_err err;
+	size_t i;
+
+	for (i = 0; i < r->nchunks; i++) {
+		struct replay_frames fr;
+		struct replay_keyframe kf;
+		struct replay_steps ss;
+		int rc = 0;
+
+		if (r->chunk[i].kind == REPLAY_FRAMES && (rc = replay_read_frames(r, i, &fr, &err)) == 0)
+			replay_frames_free(&fr);
+		if (r->chunk[i].kind == REPLAY_KEYFRAME &&
+		    (rc = replay_read_keyframe(r, i, &kf, &err)) == 0)
+			replay_keyframe_free(&kf);
+		if (r->chunk[i].kind == REPLAY_STEPS && (rc = replay_read_steps(r, i, &ss, &err)) == 0)
+			replay_steps_free(&ss);
+		if (rc != 0)
+			fail_msg("chunk %zu: %s", i, err.msg);
+	}
+}
+
+static void
+cut_at_every_byte(void **state)
+{
+	struct replay whole, r;
+	struct drape_err err;
+	unsigned char *buf;
+	size_t len, L, i, *ends, nends, meta_end;
+
+	(void)state;
+	buf = slurp_file(replay_path, &len);
+	if (replay_open_mem(&whole, buf, len, &err) != 0)
+		fail_msg("%s", err.msg);
+	nends = whole.nchunks;
+	ends = malloc(nends * sizeof *ends);
+	assert_non_null(ends);
+	for (i = 0; i < nends; i++)
+		ends[i] = (size_t)whole.chunk[i].offset + sizeof(struct replay_chunk_header) +
+		    whole.chunk[i].comp_len;
+	assert_int_equal(ends[nends - 1], len);
+	assert_int_equal(whole.chunk[0].kind, REPLAY_META);
+	meta_end = ends[0];
+	for (L = 0; L <= len; L++) {
+		size_t whole_chunks = 0;
+
+		while (whole_chunks < nends && ends[whole_chunks] <= L)
+			whole_chunks++;
+		if (replay_open_mem(&r, buf, L, &err) != 0) {
+			assert_true(L < meta_end);
+			continue;
+		}
+		assert_true(L >= meta_end);
+		assert_int_equal(r.nchunks, whole_chunks);
+		assert_int_equal(r.nbad, 0);
+		assert_int_equal(r.cut, L != ends[whole_chunks - 1]);
+		read_all(&r);
+		replay_close(&r);
+	}
+	replay_close(&whole);
+	free(ends);
+	free(buf);
+}
+
+static void
+bit_flips(void **state)
+{
+	struct replay whole, r;
+	struct drape_err err;
+	unsigned char *buf, *bad;
+	size_t len, i, j, at, flips = 0;
+
+	(void)state;
+	buf = slurp_file(replay_path, &len);
+	bad = malloc(len);
+	assert_non_null(bad);
+	if (replay_open_mem(&whole, buf, len, &err) != 0)
+		fail_msg("%s", err.msg);
+	/* the header: refused */
+	for (at = 0; at < sizeof(struct replay_file_header); at += 5) {
+		memcpy(bad, buf, len);
+		bad[at] ^= (unsigned char)(1u << (at % 8));
+		assert_int_equal(replay_open_mem(&r, bad, len, &err), -1);
+	}
+	for (i = 0; i < whole.nchunks; i++) {
+		const struct replay_chunk *c = &whole.chunk[i];
+		size_t size = sizeof(struct replay_chunk_header) + c->comp_len;
+
+		for (at = 0; at < size; at += 1 + size / 64) {
+			memcpy(bad, buf, len);
+			bad[c->offset + at] ^= (unsigned char)(1u << ((at + i) % 8));
+			flips++;
+			if (replay_open_mem(&r, bad, len, &err) != 0) {
+				assert_int_equal(c->kind, REPLAY_META);	/* only the scene is vital */
+				continue;
+			}
+			/* every other chunk intact, the flipped one not trusted */
+			assert_int_equal(r.nchunks, whole.nchunks - 1);
+			assert_true(r.nbad == 1 || (r.cut && i == whole.nchunks - 1));
+			for (j = 0; j < r.nchunks; j++)
+				assert_true(r.chunk[j].offset != c->offset);
+			read_all(&r);
+			replay_close(&r);
+		}
+	}
+	assert_true(flips > 100);
+	replay_close(&whole);
+	free(bad);
+	free(buf);
+}
+
+/* The continued run from each keyframe ends with the recorded run's hash. */
+static void
+resume_every_keyframe(void **state)
+{
+	struct truth tr;
+	struct replay r;
+	struct drape_err err;
+	size_t i, tried = 0;
+
+	(void)state;
+	record_tiny(&tr, replay_path);
+	if (replay_open(&r, replay_path, &err) != 0)
+		fail_msg("%s", err.msg);
+	for (i = 0; i < r.nchunks; i++) {
+		struct replay_keyframe kf;
+		struct scene sc;
+		struct stepper st;
+
+		if (r.chunk[i].kind != REPLAY_KEYFRAME)
+			continue;
+		if (replay_read_keyframe(&r, i, &kf, &err) != 0)
+			fail_msg("%s", err.msg);
+		if (scene_parse(&sc, r.meta.path, r.meta.text, &err) != 0)
+			fail_msg("%s", err.msg);
+		sc.duration = r.meta.duration;
+		sc.dt = r.meta.dt;
+		sc.integrator = (enum integrator_kind)r.meta.integrator;
+		init_stepper(&st, &sc);
+		memcpy(st.y, kf.y, 6 * (size_t)st.cl.n * sizeof *st.y);
+		st.t = kf.t;
+		st.step = kf.step;
+		st.dt = kf.dt;
+		assert_true(stepper_hash(&st) == kf.hash);
+		run_to_end(&st);
+		assert_int_equal(st.step, tr.nsteps);
+		assert_true(stepper_hash(&st) == tr.hash);
+		stepper_free(&st);
+		scene_free(&sc);
+		replay_keyframe_free(&kf);
+		tried++;
+	}
+	assert_true(tried >= 3);
+	replay_close(&r);
+	truth_free(&tr);
+}
+
+/* ---- through the binary ---- */
+
+static const char *
+tiny_scene_file(void)
+{
+	static char path[700];
+	FILE *f;
+
+	path_in_dir(path, sizeof path, "tiny.scene");
+	f = fopen(path, "w");
+	assert_non_null(f);
+	assert_true(fputs(tiny_scene, f) >= 0);
+	assert_int_equal(fclose(f), 0);
+	return path;
+}
+
+static const char *
+hash_of(const char *out)
+{
+	const char *h = strstr(out, "state hash   ");
+
+	assert_non_null(h);
+	return h + 13;
+}
+
+static void
+cli_record_resume(void **state)
+{
+	struct result r;
+	char args[2000], hash[17];
+
+	(void)state;
+	snprintf(args, sizeof args, "run --record '%s/cli.drr' --keyframe-every 50 '%s'", dir,
+	    tiny_scene_file());
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	memcpy(hash, hash_of(r.out), 16);
+	hash[16] = '\0';
+	snprintf(args, sizeof args, "run --resume '%s/cli.drr@120'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "resumed      from"));
+	assert_non_null(strstr(r.out, "at step 100 "));
+	assert_memory_equal(hash_of(r.out), hash, 16);
+	/* resume and record again: the copy resumes too */
+	snprintf(args, sizeof args, "run --resume '%s/cli.drr@50' --record '%s/cli2.drr'", dir,
+	    dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_memory_equal(hash_of(r.out), hash, 16);
+	snprintf(args, sizeof args, "run --resume '%s/cli2.drr@100'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_memory_equal(hash_of(r.out), hash, 16);
+
+	/* the adaptive integrator: its next step is part of the keyframe */
+	snprintf(args, sizeof args, "run --integrator dopri5 --dt 1ms --until 20ms --record "
+	    "'%s/dopri5.drr' --keyframe-every 5 '%s'", dir, tiny_scene_file());
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	memcpy(hash, hash_of(r.out), 16);
+	snprintf(args, sizeof args, "run --resume '%s/dopri5.drr@12'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "at step 10 "));
+	assert_non_null(strstr(r.out, "integrator   dopri5"));
+	assert_non_null(strstr(r.out, "simulated    0.02 s"));
+	assert_memory_equal(hash_of(r.out), hash, 16);
+
+	snprintf(args, sizeof args, "info '%s/cli.drr'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "scene        tiny"));
+	assert_non_null(strstr(r.out, "nodes        16"));
+	assert_non_null(strstr(r.out, "frames       6 at 200"));
+	assert_non_null(strstr(r.out, "integrity    whole"));
+	assert_non_null(strstr(r.out, "closed cleanly"));
+}
+
+static void
+cli_events_node(void **state)
+{
+	struct result r;
+	struct replay rp;
+	struct drape_err err;
+	char args[2000], *line, *save = NULL;
+	size_t i, e, expect = 0, got = 0;
+	const int node = 5;
+
+	(void)state;
+	if (replay_open(&rp, replay_path, &err) != 0)
+		fail_msg("%s", err.msg);
+	for (i = 0; i < rp.nchunks; i++) {
+		struct replay_steps ss;
+
+		if (rp.chunk[i].kind != REPLAY_STEPS)
+			continue;
+		assert_int_equal(replay_read_steps(&rp, i, &ss, &err), 0);
+		for (e = 0; e < ss.nev; e++)
+			expect += ss.ev[e].node == node;
+		replay_steps_free(&ss);
+	}
+	replay_close(&rp);
+	assert_true(expect > 10);
+	/* the options may follow the file */
+	snprintf(args, sizeof args, "'%s' events '%s' --node %d >'%s/ev.tsv'", DRAPE, replay_path,
+	    node, dir);
+	assert_int_equal(system(args), 0);
+	snprintf(args, sizeof args, "%s/ev.tsv", dir);
+	{
+		size_t len;
+		char *text = (char *)slurp_file(args, &len);
+
+		text = realloc(text, len + 1);
+		assert_non_null(text);
+		text[len] = '\0';
+		line = strtok_r(text, "\n", &save);
+		assert_non_null(line);
+		assert_string_equal(line, "step\tnode\ttype\tother\tobstacle\tqx\tqy\tqz\tnx\tny\tnz"
+		    "\tvn_before\tvn_after");
+		while ((line = strtok_r(NULL, "\n", &save)) != NULL) {
+			long step;
+			int n;
+
+			assert_int_equal(sscanf(line, "%ld\t%d\t", &step, &n), 2);
+			assert_int_equal(n, node);
+			got++;
+		}
+		free(text);
+	}
+	assert_int_equal(got, expect);
+	snprintf(args, sizeof args, "events --type obstacle --from 100 --to 100 '%s'", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "\n100\t"));
+	assert_null(strstr(r.out, "\n101\t"));
+	assert_null(strstr(r.out, "\n99\t"));
+}
+
+static void
+cli_pc2(void **state)
+{
+	struct result r;
+	struct replay rp;
+	struct drape_err err;
+	char args[2000], path[700];
+	unsigned char *pc2;
+	size_t len, i, frame = 0, n3;
+	int32_t v;
+	float f;
+	struct stat sb;
+
+	(void)state;
+	snprintf(args, sizeof args, "export '%s' --pc2 '%s/out.pc2' --obj '%s/rest.obj' "
+	    "--obj-seq '%s/seq'", replay_path, dir, dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	if (replay_open(&rp, replay_path, &err) != 0)
+		fail_msg("%s", err.msg);
+	n3 = 3 * (size_t)rp.meta.nodes;
+	path_in_dir(path, sizeof path, "out.pc2");
+	pc2 = slurp_file(path, &len);
+	assert_memory_equal(pc2, "POINTCACHE2\0", 12);
+	memcpy(&v, pc2 + 12, 4);
+	assert_int_equal(v, 1);
+	memcpy(&v, pc2 + 16, 4);
+	assert_int_equal(v, (int32_t)rp.meta.nodes);
+	memcpy(&f, pc2 + 20, 4);
+	assert_true(f == 0.0f);
+	memcpy(&f, pc2 + 24, 4);
+	assert_true(f == 1.0f);
+	memcpy(&v, pc2 + 28, 4);
+	assert_int_equal(v, (int32_t)rp.nframes);
+	assert_int_equal(len, 32 + 12 * rp.meta.nodes * rp.nframes);
+	for (i = 0; i < rp.nchunks; i++) {
+		struct replay_frames fr;
+		size_t k;
+
+		if (rp.chunk[i].kind != REPLAY_FRAMES)
+			continue;
+		assert_int_equal(replay_read_frames(&rp, i, &fr, &err), 0);
+		for (k = 0; k < fr.count; k++, frame++)
+			assert_memory_equal(pc2 + 32 + 12 * rp.meta.nodes * frame, fr.x + k * n3,
+			    n3 * sizeof(float));
+		replay_frames_free(&fr);
+	}
+	free(pc2);
+	path_in_dir(path, sizeof path, "rest.obj");
+	assert_int_equal(stat(path, &sb), 0);
+	snprintf(path, sizeof path, "%s/seq/frame_%05zu.obj", dir, rp.nframes - 1);
+	assert_int_equal(stat(path, &sb), 0);
+	path_in_dir(path, sizeof path, "out.pc2.tmp");
+	assert_int_equal(stat(path, &sb), -1);
+	replay_close(&rp);
+}
+
+/* info on a cut file and on one with a flipped bit says so; events and
+ * export still work on what is whole. */
+static void
+cli_info_damaged(void **state)
+{
+	struct result r;
+	char args[2000], path[700];
+	unsigned char *buf;
+	size_t len;
+	FILE *f;
+
+	(void)state;
+	buf = slurp_file(replay_path, &len);
+	path_in_dir(path, sizeof path, "cut.drr");
+	f = fopen(path, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(buf, 1, len - 100, f), len - 100);
+	assert_int_equal(fclose(f), 0);
+	snprintf(args, sizeof args, "info '%s'", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "closed cleanly, then cut short"));
+	assert_non_null(strstr(r.out, "whole chunks; cut at chunk"));
+	snprintf(args, sizeof args, "export '%s' --pc2 '%s/cut.pc2'", path, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "cut short"));
+
+	buf[len / 2] ^= 4;
+	path_in_dir(path, sizeof path, "flipped.drr");
+	f = fopen(path, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(buf, 1, len, f), len);
+	assert_int_equal(fclose(f), 0);
+	snprintf(args, sizeof args, "info '%s'", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "1 chunks with a bad CRC"));
+	snprintf(args, sizeof args, "events '%s' --node 0", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "some with a bad CRC"));
+	free(buf);
+}
+
+/* SIGTERM mid-run: the replay is closed properly and plays. */
+static void
+cli_sigterm(void **state)
+{
+	char cmd[3000], path[700];
+	struct result r;
+	FILE *f;
+	int code = -1;
+
+	(void)state;
+	snprintf(cmd, sizeof cmd, "'%s' run --record '%s/term.drr' '%s/scenes/tablecloth.scene' "
+	    ">/dev/null 2>'%s/term.err' & pid=$!; sleep 1.5; kill -TERM $pid; wait $pid; "
+	    "echo $? >'%s/term.rc'", DRAPE, dir, TOP_SRCDIR, dir, dir);
+	assert_int_equal(system(cmd), 0);
+	path_in_dir(path, sizeof path, "term.rc");
+	f = fopen(path, "r");
+	assert_non_null(f);
+	assert_int_equal(fscanf(f, "%d", &code), 1);
+	fclose(f);
+	assert_int_equal(code, 130);
+	snprintf(cmd, sizeof cmd, "info '%s/term.drr'", dir);
+	drape(&r, cmd);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "closed cleanly"));
+	assert_non_null(strstr(r.out, "integrity    whole"));
+}
+
+static void
+cli_bad(void **state)
+{
+	struct result r;
+	char args[2000];
+	FILE *f;
+
+	(void)state;
+	drape(&r, "info");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "expected one replay file"));
+	drape(&r, "info /no/such.drr");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "/no/such.drr: cannot open"));
+	drape(&r, "info " TOP_SRCDIR "/scenes/strip.scene");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "strip.scene: not a drape replay"));
+	snprintf(args, sizeof args, "%s/short.drr", dir);
+	f = fopen(args, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite("DRAPERPL", 1, 8, f), 8);
+	assert_int_equal(fclose(f), 0);
+	snprintf(args, sizeof args, "info '%s/short.drr'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "shorter than its 64-byte header"));
+	snprintf(args, sizeof args, "events --node x '%s'", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--node 'x'"));
+	snprintf(args, sizeof args, "events --node 999 '%s'", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "expected a node below 16"));
+	snprintf(args, sizeof args, "events --type bogus '%s'", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	snprintf(args, sizeof args, "events --from -3 '%s'", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	snprintf(args, sizeof args, "export '%s'", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "expected --pc2"));
+	drape(&r, "export --pc2 x.pc2 /no/such.drr");
+	assert_int_equal(r.status, 2);
+	drape(&r, "run --resume /no/such.drr");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "/no/such.drr: cannot open"));
+	snprintf(args, sizeof args, "run --resume '%s' " TOP_SRCDIR "/scenes/strip.scene",
+	    replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	snprintf(args, sizeof args, "run --resume '%s' --dt 1ms", replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	snprintf(args, sizeof args, "run --resume '%s@40' --record '%s'", replay_path, replay_path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "would overwrite the replay being resumed"));
+	drape(&r, "run --keyframe-every 0 " TOP_SRCDIR "/scenes/strip.scene");
+	assert_int_equal(r.status, 2);
+	/* an output that cannot be written: exit 1 with the file named */
+	snprintf(args, sizeof args, "run --record /no/such/dir/x.drr '%s'", tiny_scene_file());
+	drape(&r, args);
+	assert_int_equal(r.status, 1);
+	assert_non_null(strstr(r.err, "/no/such/dir/x.drr: cannot create"));
+	/* a full disk (a file size limit here): the run stops with a message,
+	 * and what was written stays readable */
+	snprintf(args, sizeof args, "trap '' XFSZ; ulimit -f 100; '%s' run --until 0.3 --record "
+	    "'%s/full.drr' '%s/scenes/tablecloth.scene' >/dev/null 2>'%s/full.err'; echo $? "
+	    ">'%s/full.rc'", DRAPE, dir, TOP_SRCDIR, dir, dir);
+	assert_int_equal(system(args), 0);
+	snprintf(args, sizeof args, "%s/full.rc", dir);
+	slurp(args, r.out, sizeof r.out);
+	assert_string_equal(r.out, "1\n");
+	snprintf(args, sizeof args, "%s/full.err", dir);
+	slurp(args, r.err, sizeof r.err);
+	assert_non_null(strstr(r.err, "full.drr: write failed: File too large"));
+	snprintf(args, sizeof args, "info '%s/full.drr'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "not closed"));
+}
+
+/* The replays that ship still open, whole, with the current reader. */
+static void
+shipped_replays(void **state)
+{
+	static const char *const names[] = { "tablecloth.drr", "strip.drr" };
+	struct replay r;
+	struct drape_err err;
+	char path[700];
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < 2; i++) {
+		snprintf(path, sizeof path, "%s/replays/%s", TOP_SRCDIR, names[i]);
+		if (replay_open(&r, path, &err) != 0)
+			fail_msg("%s", err.msg);
+		assert_int_equal(r.nbad, 0);
+		assert_false(r.cut);
+		assert_true(r.hdr.flags & REPLAY_CLOSED);
+		assert_true(r.nframes > 10 && r.nkeyframes >= 2);
+		read_all(&r);
+		replay_close(&r);
+	}
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(codec_round_trip),
+		cmocka_unit_test(round_trip),
+		cmocka_unit_test(cut_at_every_byte),
+		cmocka_unit_test(bit_flips),
+		cmocka_unit_test(resume_every_keyframe),
+		cmocka_unit_test(cli_record_resume),
+		cmocka_unit_test(cli_events_node),
+		cmocka_unit_test(cli_pc2),
+		cmocka_unit_test(cli_info_damaged),
+		cmocka_unit_test(cli_bad),
+		cmocka_unit_test(cli_sigterm),
+		cmocka_unit_test(shipped_replays),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}

@@ -21,6 +21,7 @@ int cmd_snapshot(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_events(int argc, char **argv);
 int cmd_export(int argc, char **argv);
+int cmd_replay(int argc, char **argv);
 void usage(FILE *f);
 
 #endif

@@ -29,6 +29,14 @@ evlog_free(struct evlog *log)
 }
 
 void
+evlog_clear(struct evlog *log)
+{
+	if (log->n > 0)
+		memset(log->count, 0, (size_t)log->n * sizeof *log->count);
+	log->total = 0;
+}
+
+void
 evlog_add(struct evlog *log, const struct contact_event *ev, size_t nev)
 {
 	size_t k;

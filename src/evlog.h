@@ -21,6 +21,9 @@ struct evlog {
 int evlog_init(struct evlog *log, int nodes);
 void evlog_free(struct evlog *log);
 
+/* Forgets every event (a replay going back). */
+void evlog_clear(struct evlog *log);
+
 /* Logs a step's events (those of nodes out of range are skipped). */
 void evlog_add(struct evlog *log, const struct contact_event *ev, size_t nev);
 

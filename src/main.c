@@ -14,12 +14,13 @@ usage(FILE *f)
 	    "                 [--final-obj FILE] [--record FILE.drr] [--keyframe-every N]\n"
 	    "                 [-C | --no-color] [-d | --delay TENTHS] [--paused] SCENE\n"
 	    "       drape run --resume FILE.drr[@STEP] [--until T] [--record FILE.drr]\n"
+	    "       drape replay [-C | --no-color] [-d | --delay TENTHS] FILE.drr\n"
 	    "       drape info FILE.drr\n"
 	    "       drape events [--node N] [--type T] [--from STEP] [--to STEP] FILE.drr\n"
 	    "       drape export [--pc2 OUT.pc2] [--obj REST.obj] [--obj-seq DIR] FILE.drr\n"
 	    "       drape check [--every N] SCENE|OBJ...\n"
 	    "       drape snapshot [--step N] [--view front|side|top|iso] [--size WxH]\n"
-	    "                 [--perspective] SCENE\n"
+	    "                 [--perspective] SCENE|FILE.drr\n"
 	    "       drape ccd [--method seed|ccd] [--inside angle|crossing] [--kind vf|ee] FILE.csv...\n"
 	    "\n"
 	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
@@ -50,6 +51,8 @@ main(int argc, char **argv)
 		return cmd_check(argc - 1, argv + 1);
 	if (strcmp(argv[1], "snapshot") == 0)
 		return cmd_snapshot(argc - 1, argv + 1);
+	if (strcmp(argv[1], "replay") == 0)
+		return cmd_replay(argc - 1, argv + 1);
 	if (strcmp(argv[1], "info") == 0)
 		return cmd_info(argc - 1, argv + 1);
 	if (strcmp(argv[1], "events") == 0)

@@ -64,12 +64,36 @@ screen_layout(struct layout *lo, int cols, int rows, enum panel focus)
 	lo->panel[focus] = (struct rect){ lo->side.x, lo->side.y + 1, side_w, body_h - 1 };
 }
 
+/* A replay's: its file, where it is, and how its frame stands to it. */
+static void
+replay_status(char *buf, int width, const struct status_info *si)
+{
+	const struct source_state *s = si->s;
+	const struct source_position *p = si->pos;
+	const char *base = strrchr(p->file, '/');
+
+	base = base != NULL && base[1] != '\0' ? base + 1 : p->file;
+	if (width >= 110)
+		snprintf(buf, (size_t)width + 1, "%s  %s  step %ld of %ld  t %.5f s  frame %ld/%ld "
+		    "(step %ld)  %s  dt %.3g s  E %.4e J", base, si->mode, s->step, p->last, s->t,
+		    p->frame, p->frames, p->frame_step, s->sc->name, s->dt,
+		    energy_total(&s->energy));
+	else
+		snprintf(buf, (size_t)width + 1, "%s %s step %ld t %.4fs frame %ld/%ld@%ld E %.3eJ",
+		    base, si->mode, s->step, s->t, p->frame, p->frames, p->frame_step,
+		    energy_total(&s->energy));
+}
+
 void
 screen_status(char *buf, int width, const struct status_info *si)
 {
 	const struct source_state *s = si->s;
 	char speed[32];
 
+	if (si->pos != NULL) {
+		replay_status(buf, width, si);
+		return;
+	}
 	if (si->speed > 0)
 		snprintf(speed, sizeof speed, "%.2gx", si->speed);
 	else
@@ -82,7 +106,7 @@ screen_status(char *buf, int width, const struct status_info *si)
 	else	/* 80 columns: the same facts, tighter */
 		snprintf(buf, (size_t)width + 1, "t %.4fs step %ld dt %.2gs %s E %.3eJ %s real %s "
 		    "rec:%s", s->t, s->step, s->dt, s->integrator, energy_total(&s->energy), speed,
-		    si->mode, si->recording);
+		    si->mode, strcmp(si->recording, "no") == 0 ? "no" : "on");
 }
 
 void
@@ -153,11 +177,16 @@ screen_node(struct text *t, const struct source_state *s, int node, const vec3 *
 	    s->held != NULL && s->held[node] ? " held" : "");
 	/* 30 columns each */
 	text_add(t, "x m  %8.4f%8.4f%8.4f", x.x, x.y, x.z);
-	text_add(t, "v m/s%8.4f%8.4f%8.4f", v.x, v.y, v.z);
+	if (s->v_note != NULL)	/* estimated: marked, and said why below */
+		text_add(t, "v~   %8.4f%8.4f%8.4f", v.x, v.y, v.z);
+	else
+		text_add(t, "v m/s%8.4f%8.4f%8.4f", v.x, v.y, v.z);
 	if (f != NULL)
 		text_add(t, "f N%9.1e%9.1e%9.1e", f->x, f->y, f->z);
 	else
 		text_add(t, "f N  not known here");
+	if (s->v_note != NULL)	/* the spare line */
+		text_add(t, "%s", s->v_note);
 	text_add(t, "events: %ld (latest first)", log->n > node ? log->count[node] : 0);
 	text_add(t, "%6s %3s %5s %6s %6s", "step", "typ", "with", "vn in", "out");
 	for (k = 0; k < EVLOG_PER_NODE; k++) {
@@ -178,14 +207,24 @@ screen_node(struct text *t, const struct source_state *s, int node, const vec3 *
 }
 
 void
-screen_help(struct text *t)
+screen_help(struct text *t, bool replay)
 {
-	text_add(t, "drape: keys");
+	text_add(t, "drape: keys%s", replay ? " (a replay)" : "");
 	text_add(t, " ");
-	text_add(t, "  space         run / pause");
-	text_add(t, "  n or .        one step (pauses)");
-	text_add(t, "  + / -         more / fewer steps per frame");
-	text_add(t, "  arrows, h j k l   rotate (yaw, pitch)");
+	if (replay) {
+		text_add(t, "  space         play / pause (forward, frame by frame)");
+		text_add(t, "  n . or Right  next frame; Left previous frame");
+		text_add(t, "  PgDn / PgUp   next / previous keyframe");
+		text_add(t, "  g             go to a step (Enter, Esc cancels)");
+		text_add(t, "  Home / End    first / last step");
+		text_add(t, "  + / -         more / fewer frames a redraw when playing");
+		text_add(t, "  h j k l, Up Down   rotate (yaw, pitch)");
+	} else {
+		text_add(t, "  space         run / pause");
+		text_add(t, "  n or .        one step (pauses)");
+		text_add(t, "  + / -         more / fewer steps per frame");
+		text_add(t, "  arrows, h j k l   rotate (yaw, pitch)");
+	}
 	text_add(t, "  H J K L       pan");
 	text_add(t, "  z / Z         zoom in / out");
 	text_add(t, "  v             next view: front, side, top, iso");
@@ -193,12 +232,15 @@ screen_help(struct text *t)
 	text_add(t, "  Tab           next panel");
 	text_add(t, "  [ / ]         previous / next node");
 	text_add(t, "  /             go to a node id (Enter, Esc cancels)");
-	text_add(t, "  e             run to the selected node's next event");
-	text_add(t, "  r             record (not yet: comes with replay files)");
+	text_add(t, "  e             %s to the selected node's next event", replay ? "play" : "run");
+	if (!replay)
+		text_add(t, "  r             start / stop recording (drape-DATE-TIME.drr here)");
 	text_add(t, "  Ctrl-L        redraw");
 	text_add(t, "  ? or F1       this help");
 	text_add(t, "  q             quit");
 	text_add(t, " ");
 	text_add(t, "In the view: X the selected node, o a node in contact this step.");
+	if (replay)
+		text_add(t, "Frames hold positions: v~ is their difference; keyframes are exact.");
 	text_add(t, "Any key closes this help.");
 }

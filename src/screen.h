@@ -51,7 +51,8 @@ struct status_info {
 	double speed;		/* simulated over wall time, while running */
 	const char *mode;	/* "running", "paused", "end", "blown up" */
 	long steps_per_frame;
-	const char *recording;
+	const char *recording;	/* its file, or "no" */
+	const struct source_position *pos;	/* a replay's, or NULL */
 };
 
 void screen_status(char *buf, int width, const struct status_info *si);
@@ -62,7 +63,7 @@ void screen_hash(struct text *t, const struct source_stats *ss);
 void screen_node(struct text *t, const struct source_state *s, int node, const vec3 *f,
     const struct evlog *log);
 
-/* Every key, for the help screen. */
-void screen_help(struct text *t);
+/* Every key, for the help screen: a replay's or a live run's. */
+void screen_help(struct text *t, bool replay);
 
 #endif

@@ -1,9 +1,10 @@
 /* source.h: what the TUI watches, behind a small interface: the current
  * state, one step forward, this step's contact events and collision
- * statistics, and a node's force. A live run (source_live.c, over a
- * stepper) is the only source now; a replay file will be a second one,
- * whose step reads the next frame, with seeking added to this interface
- * for the replay keys (frames, keyframes, go to a step, Home, End). */
+ * statistics, and a node's force. Two sources: a live run (source_live.c,
+ * over a stepper, which may record itself into a replay) and a replay file
+ * (source_replay.c, whose step is the next frame and which seeks). The
+ * optional ops say what a source can do: a NULL seek is a live run, whose
+ * keys do not seek; a NULL record is a replay, which does not record. */
 #ifndef DRAPE_SOURCE_H
 #define DRAPE_SOURCE_H
 
@@ -12,7 +13,9 @@
 
 #include "cloth.h"
 #include "collide.h"
+#include "evlog.h"
 #include "forces.h"
+#include "record.h"
 #include "scene.h"
 #include "vec3.h"
 
@@ -25,6 +28,9 @@ struct source_state {
 	long step;
 	const char *integrator;
 	struct energy energy;
+	/* NULL: v is the state's own; else how it was estimated (a replay's
+	 * frames hold positions only) */
+	const char *v_note;
 };
 
 struct source_stats {
@@ -33,6 +39,26 @@ struct source_stats {
 	const char *broad;	/* its name */
 	const struct collide_stats *step, *total;
 	const struct hash_stats *hash;	/* its latest fill */
+};
+
+/* Where a replay goes. */
+enum source_seek {
+	SOURCE_FRAME_NEXT,
+	SOURCE_FRAME_PREV,
+	SOURCE_KEY_NEXT,	/* the next keyframe */
+	SOURCE_KEY_PREV,
+	SOURCE_GOTO,		/* a step */
+	SOURCE_FIRST,
+	SOURCE_LAST,
+};
+
+/* Where a replay is: the step shown is a state step (after that many
+ * steps); its positions are those of the frame at or before it. */
+struct source_position {
+	const char *file;
+	long frame, frames;	/* from 1; of the frames and keyframes */
+	long frame_step;	/* the step of the frame shown */
+	long first, last;	/* the steps it can go to */
 };
 
 /* What a step did. */
@@ -54,6 +80,20 @@ struct source {
 	/* The net force on a node at the current state; false when the source
 	 * cannot tell (a replay without forces) or out of memory. */
 	bool (*force)(void *ctx, int node, vec3 *f);
+
+	/* Replays only (NULL in a live run). seek returns false when it cannot
+	 * move (at an end, no keyframe that way); step is for SOURCE_GOTO. */
+	bool (*seek)(void *ctx, enum source_seek how, long step);
+	void (*position)(void *ctx, struct source_position *p);
+	/* Logs the events of every step before the current state. */
+	void (*history)(void *ctx, struct evlog *log);
+
+	/* Live runs only (NULL in a replay). record starts recording into path,
+	 * or stops (path NULL); 0, or -1 with a message. recording is the file
+	 * being recorded or NULL; *error, if not NULL, gets why a recording
+	 * stopped by itself (a write failed), once. */
+	int (*record)(void *ctx, const char *path, char *why, size_t len);
+	const char *(*recording)(void *ctx, const char **error);
 };
 
 /* A live run: the stepper's own state. */
@@ -62,10 +102,51 @@ struct source_live {
 	struct stepper *st;
 	double *accel;		/* 3n scratch, for force */
 	long accel_step;	/* the step accel is of, -1: none */
+	long keyframe_every;	/* for recordings; 0: record_default_keyframes */
+	bool recording;
+	struct recorder rec;
+	char *rec_path;
+	char rec_error[600];	/* why the recording stopped by itself */
+	bool rec_error_new;
 };
 
-/* st must outlive src; source_live_free frees what the source allocated. */
+/* st must outlive src; source_live_free closes a recording and frees what
+ * the source allocated. */
 void source_live(struct source *src, struct source_live *lv, struct stepper *st);
 void source_live_free(struct source_live *lv);
+
+/* A replay, its scene's network built from the recorded scene. The struct
+ * must not move once open (the stepper points into it). */
+struct replay_view;
+struct source_replay {
+	struct replay rp;
+	char *file;
+	struct scene sc;
+	struct stepper *st;	/* the network, and the state shown in its y */
+	struct replay_view *view;	/* frames and keyframes, by step */
+	size_t nviews;
+	struct replay_steps *steps;	/* the intact steps chunks, by first step */
+	size_t nsteps;
+	size_t nskipped;	/* chunks that would not decode */
+	long first, last;	/* the steps the cursor goes to */
+	long cursor;		/* the state step shown */
+	size_t cur;		/* its view: the last at or before the cursor */
+	const struct replay_step *rec;	/* the step that led to the cursor, or NULL */
+	const struct contact_event *ev;	/* its events */
+	size_t nev;
+	struct collide_stats total, none;
+	bool exact;		/* v is a keyframe's */
+	double *prev;		/* 3n: the previous view's positions */
+	double *accel;		/* 3n scratch for force */
+	struct replay_frames fr;	/* the frames chunk decoded last */
+	size_t fr_chunk;
+	bool fr_loaded;
+};
+
+/* Opens path and goes to its first frame. Returns 0, or -1 with a message
+ * (not a replay, no intact frame, its scene does not parse). */
+int source_replay_open(struct source *src, struct source_replay *sr, const char *path,
+    struct drape_err *err);
+void source_replay_close(struct source_replay *sr);
 
 #endif

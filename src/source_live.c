@@ -1,6 +1,8 @@
-/* source_live.c: the source of a live run, over a stepper. */
+/* source_live.c: the source of a live run, over a stepper; it records
+ * itself into a replay between record(path) and record(NULL). */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "source.h"
 #include "stepper.h"
@@ -22,6 +24,23 @@ live_state(void *ctx, struct source_state *s)
 	s->step = st->step;
 	s->integrator = integrator_name(st->sc->integrator);
 	stepper_energy(st, &s->energy);
+	s->v_note = NULL;
+}
+
+/* Closes the recording; 0, or -1 with a message. */
+static int
+record_stop(struct source_live *lv, struct drape_err *err)
+{
+	int rc = 0;
+
+	if (!lv->recording)
+		return 0;
+	lv->recording = false;
+	if (record_close(&lv->rec, lv->st, err) != 0)
+		rc = -1;
+	free(lv->rec_path);
+	lv->rec_path = NULL;
+	return rc;
 }
 
 static enum source_step
@@ -40,6 +59,18 @@ live_step(void *ctx, char *why, size_t len)
 			snprintf(why, len, "blow-up at step %ld (t = %.6g s): %s", bl.step, bl.t,
 			    bl.why);
 		return SOURCE_FAILED;
+	}
+	if (lv->recording) {
+		struct drape_err err;
+
+		if (record_step(&lv->rec, lv->st, &err) != 0) {
+			struct drape_err ignored;
+
+			snprintf(lv->rec_error, sizeof lv->rec_error, "recording stopped at step %ld: %s",
+			    lv->st->step, err.msg);
+			lv->rec_error_new = true;
+			record_stop(lv, &ignored);
+		}
 	}
 	return SOURCE_STEPPED;
 }
@@ -96,9 +127,55 @@ live_force(void *ctx, int node, vec3 *f)
 	return true;
 }
 
+static int
+live_record(void *ctx, const char *path, char *why, size_t len)
+{
+	struct source_live *lv = ctx;
+	struct drape_err err;
+	long every = lv->keyframe_every > 0 ? lv->keyframe_every : record_default_keyframes(lv->st);
+
+	if (path == NULL) {
+		if (record_stop(lv, &err) == 0)
+			return 0;
+		snprintf(why, len, "%s", err.msg);
+		return -1;
+	}
+	if (lv->recording) {
+		snprintf(why, len, "already recording into %s", lv->rec_path);
+		return -1;
+	}
+	if ((lv->rec_path = malloc(strlen(path) + 1)) == NULL) {
+		snprintf(why, len, "out of memory");
+		return -1;
+	}
+	strcpy(lv->rec_path, path);
+	if (record_open(&lv->rec, path, lv->st, every, &err) != 0) {
+		snprintf(why, len, "%s", err.msg);
+		free(lv->rec_path);
+		lv->rec_path = NULL;
+		return -1;
+	}
+	lv->recording = true;
+	return 0;
+}
+
+static const char *
+live_recording(void *ctx, const char **error)
+{
+	struct source_live *lv = ctx;
+
+	if (error != NULL) {
+		*error = lv->rec_error_new ? lv->rec_error : NULL;
+		lv->rec_error_new = false;
+	}
+	return lv->recording ? lv->rec_path : NULL;
+}
+
 void
 source_live(struct source *src, struct source_live *lv, struct stepper *st)
 {
+	memset(lv, 0, sizeof *lv);
+	memset(src, 0, sizeof *src);
 	lv->st = st;
 	lv->accel = NULL;
 	lv->accel_step = -1;
@@ -109,11 +186,16 @@ source_live(struct source *src, struct source_live *lv, struct stepper *st)
 	src->events = live_events;
 	src->stats = live_stats;
 	src->force = live_force;
+	src->record = live_record;
+	src->recording = live_recording;
 }
 
 void
 source_live_free(struct source_live *lv)
 {
+	struct drape_err ignored;	/* run_tui stops a recording itself, to say why it failed */
+
+	record_stop(lv, &ignored);
 	free(lv->accel);
 	lv->accel = NULL;
 }

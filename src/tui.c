@@ -1,5 +1,7 @@
 /* tui.c: the ncurses front end: one werase and one doupdate per frame,
- * redraws capped by the delay, ASCII only, colour optional. */
+ * redraws capped by the delay, ASCII only, colour optional. On a replay
+ * (a source that seeks) the arrows, PgUp/PgDn, Home/End and g move in it;
+ * on a live run r records. */
 #include <curses.h>
 #include <math.h>
 #include <signal.h>
@@ -48,7 +50,9 @@ struct tui {
 	long spf;		/* steps per frame, at most */
 	double speed;		/* simulated over wall time */
 	double mark_wall, mark_t;
+	bool replay;		/* the source seeks */
 	bool prompt;
+	bool prompt_step;	/* the prompt asks for a step, else a node */
 	char input[16];
 	char msg[300];
 	struct tui_result *res;
@@ -76,6 +80,26 @@ say(struct tui *ui, const char *fmt, ...)
 	va_end(ap);
 }
 
+/* A replay moved: the inspector's events are those before it. */
+static void
+rebuild_log(struct tui *ui)
+{
+	evlog_clear(&ui->log);
+	ui->src->history(ui->src->ctx, &ui->log);
+	ui->ended = ui->src->done(ui->src->ctx);
+}
+
+static void
+seek(struct tui *ui, enum source_seek how, long step, const char *none)
+{
+	ui->running = false;
+	if (!ui->src->seek(ui->src->ctx, how, step)) {
+		say(ui, "%s", none);
+		return;
+	}
+	rebuild_log(ui);
+}
+
 /* One step; false when there is none (the end, or a blow-up). */
 static bool
 step_once(struct tui *ui)
@@ -84,23 +108,28 @@ step_once(struct tui *ui)
 	const struct contact_event *ev;
 
 	if (ui->ended || ui->res->blown_up) {
-		say(ui, "%s", ui->ended ? "end of the run" : ui->res->why);
+		say(ui, "%s", ui->ended ? (ui->replay ? "end of the replay" : "end of the run") :
+		    ui->res->why);
 		return false;
 	}
 	switch (ui->src->step(ui->src->ctx, ui->res->why, sizeof ui->res->why)) {
 	case SOURCE_STEPPED:
-		ev = ui->src->events(ui->src->ctx, &nev);
-		evlog_add(&ui->log, ev, nev);
+		if (ui->replay) {	/* a frame on: every step in between */
+			rebuild_log(ui);
+		} else {
+			ev = ui->src->events(ui->src->ctx, &nev);
+			evlog_add(&ui->log, ev, nev);
+		}
 		if (ui->src->done(ui->src->ctx)) {
 			ui->ended = true;
 			ui->running = false;
-			say(ui, "end of the run");
+			say(ui, "%s", ui->replay ? "end of the replay" : "end of the run");
 		}
 		return true;
 	case SOURCE_END:
 		ui->ended = true;
 		ui->running = false;
-		say(ui, "end of the run");
+		say(ui, "%s", ui->replay ? "end of the replay" : "end of the run");
 		return false;
 	case SOURCE_FAILED:
 		ui->res->blown_up = true;
@@ -172,6 +201,47 @@ reset_camera(struct tui *ui)
 	ui->cam.perspective = persp;
 }
 
+/* r: starts or stops recording into drape-YYYYMMDD-HHMMSS.drr here. */
+static void
+toggle_recording(struct tui *ui)
+{
+	char name[64], why[600];
+	const char *now_rec = ui->src->recording(ui->src->ctx, NULL);
+	time_t t = time(NULL);
+	struct tm tm;
+	int k;
+
+	if (now_rec != NULL) {
+		snprintf(name, sizeof name, "%s", now_rec);
+		if (ui->src->record(ui->src->ctx, NULL, why, sizeof why) != 0)
+			say(ui, "recording: %s", why);
+		else
+			say(ui, "recorded %s", name);
+		return;
+	}
+	if (localtime_r(&t, &tm) == NULL) {
+		say(ui, "recording: no local time for its name");
+		return;
+	}
+	for (k = 1; k < 100; k++) {
+		char stamp[32];
+		FILE *f;
+
+		strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
+		if (k == 1)
+			snprintf(name, sizeof name, "drape-%s.drr", stamp);
+		else
+			snprintf(name, sizeof name, "drape-%s-%d.drr", stamp, k);
+		if ((f = fopen(name, "rb")) == NULL)
+			break;	/* not there: ours */
+		fclose(f);
+	}
+	if (ui->src->record(ui->src->ctx, name, why, sizeof why) != 0)
+		say(ui, "recording: %s", why);
+	else
+		say(ui, "recording into %s (r stops)", name);
+}
+
 static void
 prompt_key(struct tui *ui, int ch)
 {
@@ -192,7 +262,16 @@ prompt_key(struct tui *ui, int ch)
 
 		ui->src->state(ui->src->ctx, &s);
 		ui->prompt = false;
-		if (len > 0 && id >= 0 && id < s.cl->n) {
+		if (ui->prompt_step) {
+			struct source_position p;
+
+			ui->src->position(ui->src->ctx, &p);
+			if (len > 0 && id >= p.first && id <= p.last)
+				seek(ui, SOURCE_GOTO, id, "out of memory");
+			else
+				say(ui, "no step '%s': the replay has steps %ld to %ld", ui->input,
+				    p.first, p.last);
+		} else if (len > 0 && id >= 0 && id < s.cl->n) {
 			ui->selected = (int)id;
 			ui->msg[0] = '\0';
 		} else {
@@ -216,6 +295,38 @@ key(struct tui *ui, int ch)
 	}
 	ui->msg[0] = '\0';	/* a message lasts until the next key */
 	ui->src->state(ui->src->ctx, &s);
+	if (ui->replay) {
+		switch (ch) {
+		case KEY_RIGHT:
+			ch = 'n';	/* as n: one frame, or the end */
+			break;
+		case KEY_LEFT:
+			seek(ui, SOURCE_FRAME_PREV, 0, "at the first frame");
+			return;
+		case KEY_NPAGE:
+			seek(ui, SOURCE_KEY_NEXT, 0, "no keyframe after this step");
+			return;
+		case KEY_PPAGE:
+			seek(ui, SOURCE_KEY_PREV, 0, "no keyframe before this step");
+			return;
+		case KEY_HOME:
+			seek(ui, SOURCE_FIRST, 0, "at the first step");
+			return;
+		case KEY_END:
+			seek(ui, SOURCE_LAST, 0, "at the last step");
+			return;
+		case 'g':
+			ui->prompt = true;
+			ui->prompt_step = true;
+			ui->input[0] = '\0';
+			return;
+		case 'r':
+			say(ui, "a replay does not record (drape run --record does)");
+			return;
+		default:
+			break;
+		}
+	}
 	switch (ch) {
 	case 'q':
 		ui->quit = true;
@@ -234,12 +345,12 @@ key(struct tui *ui, int ch)
 	case '=':
 		if (ui->spf < STEPS_PER_FRAME_MAX)
 			ui->spf *= 2;
-		say(ui, "at most %ld steps a frame", ui->spf);
+		say(ui, "at most %ld %s a frame", ui->spf, ui->replay ? "replay frames" : "steps");
 		break;
 	case '-':
 		if (ui->spf > 1)
 			ui->spf /= 2;
-		say(ui, "at most %ld steps a frame", ui->spf);
+		say(ui, "at most %ld %s a frame", ui->spf, ui->replay ? "replay frames" : "steps");
 		break;
 	case KEY_LEFT:
 	case 'h':
@@ -295,13 +406,14 @@ key(struct tui *ui, int ch)
 		break;
 	case '/':
 		ui->prompt = true;
+		ui->prompt_step = false;
 		ui->input[0] = '\0';
 		break;
 	case 'e':
 		seek_event(ui);
 		break;
 	case 'r':
-		say(ui, "recording: not yet (it comes with replay files)");
+		toggle_recording(ui);
 		break;
 	case '?':
 	case KEY_F(1):
@@ -397,6 +509,8 @@ draw(struct tui *ui)
 	struct layout lo;
 	struct source_state s;
 	struct status_info si;
+	struct source_position pos;
+	const char *rec;
 	char line[TEXT_WIDTH * 2];
 	int rows, cols, k;
 
@@ -411,15 +525,24 @@ draw(struct tui *ui)
 		struct text t;
 
 		text_init(&t, cols - 2);
-		screen_help(&t);
+		screen_help(&t, ui->replay);
 		draw_text(&t, (struct rect){ 2, 1, cols - 2, rows - 1 }, false);
 	} else {
 		si.s = &s;
 		si.speed = ui->speed;	/* the latest measured, kept while paused */
-		si.mode = ui->res->blown_up ? "blown up" : ui->ended ? "end" :
-		    ui->running ? "running" : "paused";
+		if (ui->replay) {
+			ui->src->position(ui->src->ctx, &pos);
+			si.mode = ui->ended ? "replay end" : ui->running ? "replay playing" : "replay";
+			si.recording = "no";
+			si.pos = &pos;
+		} else {
+			rec = ui->src->recording(ui->src->ctx, NULL);
+			si.mode = ui->res->blown_up ? "blown up" : ui->ended ? "end" :
+			    ui->running ? "running" : "paused";
+			si.recording = rec != NULL ? rec : "no";
+			si.pos = NULL;
+		}
 		si.steps_per_frame = ui->spf;
-		si.recording = "no";
 		screen_status(line, cols < (int)sizeof line - 1 ? cols : (int)sizeof line - 1, &si);
 		attrset(A_REVERSE);
 		mvhline(0, 0, ' ', cols);
@@ -443,10 +566,18 @@ draw(struct tui *ui)
 		for (k = 0; k < PANEL_COUNT; k++)
 			if (lo.panel[k].h > 0)
 				draw_panel(ui, (enum panel)k, lo.panel[k], &s);
+		rec = ui->replay ? NULL : ui->src->recording(ui->src->ctx, NULL);
 		if (ui->prompt)
-			snprintf(line, sizeof line, "go to node: %s_", ui->input);
+			snprintf(line, sizeof line, "go to %s: %s_", ui->prompt_step ? "step" : "node",
+			    ui->input);
 		else if (ui->msg[0] != '\0')
 			snprintf(line, sizeof line, "%s", ui->msg);
+		else if (ui->replay)
+			snprintf(line, sizeof line, "? help  q quit  space play  Left/Right frame  "
+			    "PgUp/PgDn keyframe  g step  Home/End  Tab panel  / node");
+		else if (rec != NULL)
+			snprintf(line, sizeof line, "recording into %s (r stops)  ? help  q quit  "
+			    "space run/pause", rec);
 		else
 			snprintf(line, sizeof line, "? help  q quit  space run/pause  n step  +/- speed  "
 			    "arrows rotate  z/Z zoom  v view  Tab panel  [/] node");
@@ -489,6 +620,13 @@ loop(struct tui *ui)
 			next = t + period;
 			ui->dirty = true;
 		}
+		if (!ui->replay) {
+			const char *error;
+
+			ui->src->recording(ui->src->ctx, &error);
+			if (error != NULL)
+				say(ui, "%s", error);
+		}
 		if (ui->dirty) {
 			if (draw(ui) != 0) {
 				ui->res->end = TUI_ERROR;
@@ -526,7 +664,8 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 	ui.src = src;
 	ui.opt = *opt;
 	ui.res = res;
-	ui.spf = 256;
+	ui.replay = src->seek != NULL;
+	ui.spf = ui.replay ? 1 : 256;	/* a replay plays a frame a redraw */
 	ui.running = !opt->paused;
 	ui.preset = VIEW_ISO;
 	raster_init(&ui.r);

@@ -113,7 +113,7 @@ status_and_panels(void **state)
 		assert_int_equal(src.step(src.ctx, line, sizeof line), SOURCE_STEPPED);
 	src.state(src.ctx, &s);
 	assert_int_equal(s.step, 7);
-	si = (struct status_info){ &s, 0.25, "paused", 256, "no" };
+	si = (struct status_info){ &s, 0.25, "paused", 256, "no", NULL };
 	screen_status(line, 80, &si);
 	assert_true(strlen(line) <= 80);
 	assert_non_null(strstr(line, "step 7 "));
@@ -153,7 +153,7 @@ status_and_panels(void **state)
 	assert_non_null(strstr(t.line[3], "not known"));
 	assert_non_null(strstr(t.line[6], "none yet"));
 	text_init(&t, 60);
-	screen_help(&t);
+	screen_help(&t, false);
 	assert_true(t.n > 10);
 
 	evlog_free(&log);

@@ -1,0 +1,557 @@
+/* source_replay.c: the source of a replay file. The cursor is a state step;
+ * the positions shown are those of the frame (or keyframe) at or before
+ * it, the events and statistics those of the step that led to it. Frames
+ * hold float32 positions only: there the velocities are the difference to
+ * the previous frame and the force is not known; a keyframe has both
+ * exactly. Chunks that would not decode are skipped: what is intact shows. */
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "source.h"
+#include "stepper.h"
+
+/* Steps beyond this are a hostile file's, not a run's: left out, so that
+ * the cursor's arithmetic never overflows. */
+#define STEP_MAX (LONG_MAX / 4)
+
+struct replay_view {
+	long step;
+	double t;
+	size_t chunk;		/* in rp.chunk */
+	size_t k;		/* the frame in its chunk */
+	bool key;		/* a keyframe: the double state */
+};
+
+static int
+view_order(const void *a, const void *b)
+{
+	const struct replay_view *p = a, *q = b;
+
+	if (p->step != q->step)
+		return p->step < q->step ? -1 : 1;
+	return (int)q->key - (int)p->key;	/* the keyframe first: it is exact */
+}
+
+static int
+steps_order(const void *a, const void *b)
+{
+	const struct replay_steps *p = a, *q = b;
+	long s = p->count > 0 ? p->s[0].step : 0, t = q->count > 0 ? q->s[0].step : 0;
+
+	return s < t ? -1 : s > t;
+}
+
+static int
+add_view(struct source_replay *sr, size_t *cap, long step, double t, size_t chunk, size_t k,
+    bool key)
+{
+	if (step < 0 || step > STEP_MAX)
+		return 0;
+	if (sr->nviews == *cap) {
+		size_t ncap = *cap ? 2 * *cap : 64;
+		struct replay_view *v = realloc(sr->view, ncap * sizeof *v);
+
+		if (v == NULL)
+			return -1;
+		sr->view = v;
+		*cap = ncap;
+	}
+	sr->view[sr->nviews++] = (struct replay_view){ step, t, chunk, k, key };
+	return 0;
+}
+
+/* Every intact chunk decoded once: the frames' and keyframes' steps and
+ * times, and the steps chunks kept. */
+static int
+index_chunks(struct source_replay *sr, struct drape_err *err)
+{
+	size_t i, k, vcap = 0, scap = 0, j;
+	struct drape_err ignored;
+
+	for (i = 0; i < sr->rp.nchunks; i++) {
+		const struct replay_chunk *c = &sr->rp.chunk[i];
+		struct replay_frames fr;
+		struct replay_keyframe kf;
+		struct replay_steps ss;
+
+		if (c->kind == REPLAY_FRAMES) {
+			if (replay_read_frames(&sr->rp, i, &fr, &ignored) != 0) {
+				sr->nskipped++;
+				continue;
+			}
+			for (k = 0; k < fr.count; k++)
+				if (add_view(sr, &vcap, fr.step[k], fr.t[k], i, k, false) != 0) {
+					replay_frames_free(&fr);
+					goto oom;
+				}
+			replay_frames_free(&fr);
+		} else if (c->kind == REPLAY_KEYFRAME) {
+			if (replay_read_keyframe(&sr->rp, i, &kf, &ignored) != 0) {
+				sr->nskipped++;
+				continue;
+			}
+			if (add_view(sr, &vcap, kf.step, kf.t, i, 0, true) != 0) {
+				replay_keyframe_free(&kf);
+				goto oom;
+			}
+			replay_keyframe_free(&kf);
+		} else if (c->kind == REPLAY_STEPS) {
+			if (replay_read_steps(&sr->rp, i, &ss, &ignored) != 0) {
+				sr->nskipped++;
+				continue;
+			}
+			if (ss.count == 0 || ss.s[ss.count - 1].step > STEP_MAX) {
+				replay_steps_free(&ss);
+				continue;
+			}
+			if (sr->nsteps == scap) {
+				size_t ncap = scap ? 2 * scap : 16;
+				struct replay_steps *p = realloc(sr->steps, ncap * sizeof *p);
+
+				if (p == NULL) {
+					replay_steps_free(&ss);
+					goto oom;
+				}
+				sr->steps = p;
+				scap = ncap;
+			}
+			sr->steps[sr->nsteps++] = ss;
+		}
+	}
+	if (sr->nviews == 0) {
+		err_set(err, "%s: no intact frame or keyframe to show", sr->file);
+		return -1;
+	}
+	qsort(sr->view, sr->nviews, sizeof *sr->view, view_order);
+	for (i = 1, j = 0; i < sr->nviews; i++)	/* one view a step, the exact one */
+		if (sr->view[i].step != sr->view[j].step)
+			sr->view[++j] = sr->view[i];
+	sr->nviews = j + 1;
+	if (sr->nsteps > 0)
+		qsort(sr->steps, sr->nsteps, sizeof *sr->steps, steps_order);
+	return 0;
+oom:
+	err_set(err, "%s: out of memory", sr->file);
+	return -1;
+}
+
+/* The positions of view i into x (3n), and its velocities into v when it
+ * is a keyframe (v may be NULL). */
+static int
+load_view(struct source_replay *sr, size_t i, double *x, double *v)
+{
+	const struct replay_view *vw = &sr->view[i];
+	size_t n3 = 3 * (size_t)sr->st->cl.n, j;
+	struct drape_err ignored;
+
+	if (vw->key) {
+		struct replay_keyframe kf;
+
+		if (replay_read_keyframe(&sr->rp, vw->chunk, &kf, &ignored) != 0)
+			return -1;
+		memcpy(x, kf.y, n3 * sizeof *x);
+		if (v != NULL)
+			memcpy(v, kf.y + n3, n3 * sizeof *v);
+		replay_keyframe_free(&kf);
+		return 0;
+	}
+	if (!sr->fr_loaded || sr->fr_chunk != vw->chunk) {
+		if (sr->fr_loaded)
+			replay_frames_free(&sr->fr);
+		sr->fr_loaded = false;
+		if (replay_read_frames(&sr->rp, vw->chunk, &sr->fr, &ignored) != 0)
+			return -1;
+		sr->fr_loaded = true;
+		sr->fr_chunk = vw->chunk;
+	}
+	if (vw->k >= sr->fr.count)
+		return -1;
+	for (j = 0; j < n3; j++)
+		x[j] = sr->fr.x[vw->k * n3 + j];
+	return 0;
+}
+
+/* The step record numbered step, or NULL; *ev gets its events. */
+static const struct replay_step *
+find_step(const struct source_replay *sr, long step, const struct contact_event **ev)
+{
+	size_t i, j, at;
+
+	for (i = 0; i < sr->nsteps; i++) {
+		const struct replay_steps *ss = &sr->steps[i];
+
+		if (step < ss->s[0].step || step > ss->s[ss->count - 1].step)
+			continue;
+		for (j = 0, at = 0; j < ss->count && ss->s[j].step != step; j++)
+			at += (size_t)ss->s[j].nev;
+		if (j == ss->count)
+			continue;
+		*ev = ss->ev + at;
+		return &ss->s[j];
+	}
+	*ev = NULL;
+	return NULL;
+}
+
+static void
+stats_add(struct collide_stats *total, const struct collide_stats *s)
+{
+	int k;
+
+	total->narrow_tests += s->narrow_tests;
+	for (k = 0; k < CONTACT_NTYPES; k++)
+		total->contacts[k] += s->contacts[k];
+	total->corrections += s->corrections;
+	total->frozen += s->frozen;
+	total->unresolved += s->unresolved;
+	total->broad.node_pairs += s->broad.node_pairs;
+	total->broad.vt_pairs += s->broad.vt_pairs;
+	total->broad.ee_pairs += s->broad.ee_pairs;
+	if (s->passes > total->passes)
+		total->passes = s->passes;
+}
+
+/* The last view at or before step (the first view when none is). */
+static size_t
+view_at(const struct source_replay *sr, long step)
+{
+	size_t lo = 0, hi = sr->nviews;
+
+	while (hi - lo > 1) {
+		size_t mid = lo + (hi - lo) / 2;
+
+		if (sr->view[mid].step <= step)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+/* The cursor at step (clamped); 0, or -1 out of memory (nothing changed). */
+static int
+set_cursor(struct source_replay *sr, long step)
+{
+	struct stepper *st = sr->st;
+	size_t n3 = 3 * (size_t)st->cl.n, i, j;
+	double *y;
+	const struct replay_view *vw;
+
+	if (step < sr->first)
+		step = sr->first;
+	if (step > sr->last)
+		step = sr->last;
+	i = view_at(sr, step);
+	vw = &sr->view[i];
+	if ((y = malloc(2 * n3 * sizeof *y)) == NULL)
+		return -1;
+	if (load_view(sr, i, y, y + n3) != 0)
+		goto fail;
+	if (!vw->key) {
+		/* the backward difference; the forward one at the first frame */
+		size_t other = i > 0 ? i - 1 : i + 1;
+		double dt;
+
+		memset(y + n3, 0, n3 * sizeof *y);
+		if (other < sr->nviews) {
+			if (load_view(sr, other, sr->prev, NULL) != 0)
+				goto fail;
+			dt = vw->t - sr->view[other].t;
+			for (j = 0; j < n3 && dt != 0; j++)
+				y[n3 + j] = (y[j] - sr->prev[j]) / dt;
+		}
+	}
+	memcpy(st->y, y, 2 * n3 * sizeof *y);
+	free(y);
+	sr->cursor = step;
+	sr->cur = i;
+	sr->exact = vw->key;
+	sr->rec = find_step(sr, step - 1, &sr->ev);
+	sr->nev = sr->rec != NULL ? (size_t)sr->rec->nev : 0;
+	st->step = step;
+	st->t = sr->rec != NULL ? sr->rec->t : vw->t;
+	st->dt = sr->rec != NULL ? sr->rec->dt : sr->rp.meta.dt_set;
+	memset(&sr->total, 0, sizeof sr->total);
+	for (i = 0; i < sr->nsteps; i++)
+		for (j = 0; j < sr->steps[i].count && sr->steps[i].s[j].step < step; j++)
+			stats_add(&sr->total, &sr->steps[i].s[j].col);
+	return 0;
+fail:
+	free(y);
+	return -1;
+}
+
+static void
+replay_state(void *ctx, struct source_state *s)
+{
+	struct source_replay *sr = ctx;
+	const struct stepper *st = sr->st;
+
+	s->sc = st->sc;
+	s->cl = &st->cl;
+	s->x = stepper_x(st);
+	s->v = stepper_v(st);
+	s->held = st->pr.held;
+	s->t = st->t;
+	s->t_end = st->t_end;
+	s->dt = st->dt;
+	s->step = st->step;
+	s->integrator = integrator_name(st->sc->integrator);
+	stepper_energy(st, &s->energy);
+	s->v_note = sr->exact ? NULL : "v: frame differences";
+}
+
+/* The step of the next (dir > 0) or previous view after or before the
+ * cursor, keyframes only if asked; -1 for none. */
+static long
+neighbour(const struct source_replay *sr, int dir, bool keys)
+{
+	size_t i;
+
+	if (dir > 0) {
+		for (i = 0; i < sr->nviews; i++)
+			if (sr->view[i].step > sr->cursor && (!keys || sr->view[i].key))
+				return sr->view[i].step;
+	} else {
+		for (i = sr->nviews; i-- > 0;)
+			if (sr->view[i].step < sr->cursor && (!keys || sr->view[i].key))
+				return sr->view[i].step;
+	}
+	return -1;
+}
+
+static bool
+replay_seek(void *ctx, enum source_seek how, long step)
+{
+	struct source_replay *sr = ctx;
+	long to = -1;
+
+	switch (how) {
+	case SOURCE_FRAME_NEXT:
+		/* past the last frame, the last step with statistics */
+		if ((to = neighbour(sr, 1, false)) < 0 && sr->cursor < sr->last)
+			to = sr->last;
+		break;
+	case SOURCE_FRAME_PREV:
+		to = neighbour(sr, -1, false);
+		break;
+	case SOURCE_KEY_NEXT:
+		to = neighbour(sr, 1, true);
+		break;
+	case SOURCE_KEY_PREV:
+		to = neighbour(sr, -1, true);
+		break;
+	case SOURCE_GOTO:
+		to = step < sr->first ? sr->first : step > sr->last ? sr->last : step;
+		break;
+	case SOURCE_FIRST:
+		to = sr->first;
+		break;
+	case SOURCE_LAST:
+		to = sr->last;
+		break;
+	}
+	if (to < 0 || (to == sr->cursor && how != SOURCE_GOTO))
+		return false;
+	return set_cursor(sr, to) == 0;
+}
+
+static enum source_step
+replay_step(void *ctx, char *why, size_t len)
+{
+	struct source_replay *sr = ctx;
+
+	if (sr->cursor >= sr->last)
+		return SOURCE_END;
+	if (!replay_seek(ctx, SOURCE_FRAME_NEXT, 0)) {
+		snprintf(why, len, "%s: out of memory for the frame after step %ld", sr->file,
+		    sr->cursor);
+		return SOURCE_FAILED;
+	}
+	return SOURCE_STEPPED;
+}
+
+static bool
+replay_done(void *ctx)
+{
+	struct source_replay *sr = ctx;
+
+	return sr->cursor >= sr->last;
+}
+
+static const struct contact_event *
+replay_events(void *ctx, size_t *n)
+{
+	struct source_replay *sr = ctx;
+
+	*n = sr->nev;
+	return sr->ev;
+}
+
+static void
+replay_stats(void *ctx, struct source_stats *s)
+{
+	struct source_replay *sr = ctx;
+	const struct stepper *st = sr->st;
+
+	s->active = st->col.active;
+	s->has_hash = st->col.active && st->col.pairs &&
+	    (st->sc->col.broad == BROAD_SEED || st->sc->col.broad == BROAD_GRID);
+	s->broad = broad_mode_name[st->sc->col.broad];
+	s->step = sr->rec != NULL ? &sr->rec->col : &sr->none;
+	s->total = &sr->total;
+	s->hash = &s->step->broad.hash;
+}
+
+/* Known at a keyframe only, whose velocities are exact. */
+static bool
+replay_force(void *ctx, int node, vec3 *f)
+{
+	struct source_replay *sr = ctx;
+	struct stepper *st = sr->st;
+
+	if (!sr->exact || node < 0 || node >= st->cl.n)
+		return false;
+	forces_accel(&st->fo, sr->view[sr->cur].t, stepper_x(st), stepper_v(st), sr->accel);
+	*f = v3_scale(v3_load(sr->accel + 3 * node), st->cl.mass[node]);
+	return true;
+}
+
+static void
+replay_position(void *ctx, struct source_position *p)
+{
+	struct source_replay *sr = ctx;
+
+	p->file = sr->file;
+	p->frame = (long)sr->cur + 1;
+	p->frames = (long)sr->nviews;
+	p->frame_step = sr->view[sr->cur].step;
+	p->first = sr->first;
+	p->last = sr->last;
+}
+
+static void
+replay_history(void *ctx, struct evlog *log)
+{
+	struct source_replay *sr = ctx;
+	size_t i, n;
+
+	for (i = 0; i < sr->nsteps; i++) {
+		const struct replay_steps *ss = &sr->steps[i];
+
+		/* a chunk's events are in step order */
+		for (n = 0; n < ss->nev && ss->ev[n].step < sr->cursor; n++)
+			;
+		evlog_add(log, ss->ev, n);
+	}
+}
+
+int
+source_replay_open(struct source *src, struct source_replay *sr, const char *path,
+    struct drape_err *err)
+{
+	const struct replay_meta *m;
+	size_t n3, i;
+
+	memset(sr, 0, sizeof *sr);
+	memset(src, 0, sizeof *src);
+	if ((sr->file = malloc(strlen(path) + 1)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		return -1;
+	}
+	strcpy(sr->file, path);
+	if (replay_open(&sr->rp, path, err) != 0) {
+		free(sr->file);
+		sr->file = NULL;
+		return -1;
+	}
+	m = &sr->rp.meta;
+	if (scene_parse(&sr->sc, m->path, m->text, err) != 0)
+		goto fail_replay;
+	sr->sc.duration = m->duration;
+	sr->sc.dt = m->dt;
+	if (m->integrator < 0 || m->integrator >= INTEG_COUNT) {
+		err_set(err, "%s: unknown integrator %d", path, m->integrator);
+		goto fail_scene;
+	}
+	sr->sc.integrator = (enum integrator_kind)m->integrator;
+	if ((sr->st = malloc(sizeof *sr->st)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		goto fail_scene;
+	}
+	if (stepper_init(sr->st, &sr->sc, err) != 0)
+		goto fail_stepper;
+	if ((uint32_t)sr->st->cl.n != m->nodes) {
+		err_set(err, "%s: its scene now gives %d nodes, expected the recorded %u", path,
+		    sr->st->cl.n, m->nodes);
+		goto fail_init;
+	}
+	n3 = 3 * (size_t)sr->st->cl.n;
+	if ((sr->prev = malloc(n3 * sizeof *sr->prev)) == NULL ||
+	    (sr->accel = malloc(n3 * sizeof *sr->accel)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		goto fail_init;
+	}
+	if (index_chunks(sr, err) != 0)
+		goto fail_init;
+	sr->first = sr->view[0].step;
+	sr->last = sr->view[sr->nviews - 1].step;
+	for (i = 0; i < sr->nsteps; i++) {
+		long after = sr->steps[i].s[sr->steps[i].count - 1].step + 1;
+
+		if (after > sr->last)
+			sr->last = after;
+	}
+	if (set_cursor(sr, sr->first) != 0) {
+		err_set(err, "%s: out of memory", path);
+		goto fail_init;
+	}
+	src->ctx = sr;
+	src->state = replay_state;
+	src->step = replay_step;
+	src->done = replay_done;
+	src->events = replay_events;
+	src->stats = replay_stats;
+	src->force = replay_force;
+	src->seek = replay_seek;
+	src->position = replay_position;
+	src->history = replay_history;
+	return 0;
+fail_init:
+	stepper_free(sr->st);
+fail_stepper:
+	free(sr->st);
+	sr->st = NULL;
+fail_scene:
+	scene_free(&sr->sc);
+fail_replay:
+	source_replay_close(sr);
+	return -1;
+}
+
+void
+source_replay_close(struct source_replay *sr)
+{
+	size_t i;
+
+	if (sr->st != NULL) {
+		stepper_free(sr->st);
+		free(sr->st);
+		scene_free(&sr->sc);
+	}
+	for (i = 0; i < sr->nsteps; i++)
+		replay_steps_free(&sr->steps[i]);
+	free(sr->steps);
+	free(sr->view);
+	free(sr->prev);
+	free(sr->accel);
+	if (sr->fr_loaded)
+		replay_frames_free(&sr->fr);
+	if (sr->file != NULL)
+		replay_close(&sr->rp);
+	free(sr->file);
+	memset(sr, 0, sizeof *sr);
+}

@@ -1,0 +1,285 @@
+/* test_source_replay.c: the replay source on the shipped tablecloth
+ * (2265 steps, keyframes every 1000 steps and at the end, frames at 50 per
+ * second): frame, keyframe and step seeking, the step's events and
+ * statistics, the history for the inspector, velocities estimated between
+ * frames and exact at keyframes, a damaged chunk skipped, the status line. */
+#include <unistd.h>
+
+#include "testutil.h"
+
+#include "replay.h"
+#include "screen.h"
+#include "source.h"
+
+#define TABLECLOTH TOP_SRCDIR "/replays/tablecloth.drr"
+
+static long
+cursor(struct source *src)
+{
+	struct source_state s;
+
+	src->state(src->ctx, &s);
+	return s.step;
+}
+
+static struct source_position
+where(struct source *src)
+{
+	struct source_position p;
+
+	src->position(src->ctx, &p);
+	return p;
+}
+
+static void
+open_tablecloth(struct source *src, struct source_replay *sr)
+{
+	struct drape_err err;
+
+	if (source_replay_open(src, sr, TABLECLOTH, &err) != 0)
+		fail_msg("source_replay_open: %s", err.msg);
+}
+
+static void
+keyframes_and_ends(void **state)
+{
+	struct source src;
+	struct source_replay sr;
+	struct source_position p;
+	char why[200];
+
+	(void)state;
+	open_tablecloth(&src, &sr);
+	assert_null(src.record);
+	p = where(&src);
+	assert_int_equal(p.first, 0);
+	assert_int_equal(p.last, 2265);
+	assert_int_equal(p.frame, 1);
+	/* 16 frames, and the keyframes at 1000 and 2000 between them (those at
+	 * 0 and 2265 share a frame's step) */
+	assert_int_equal(p.frames, 18);
+	assert_int_equal(cursor(&src), 0);
+	assert_false(src.seek(src.ctx, SOURCE_FRAME_PREV, 0));
+	assert_false(src.seek(src.ctx, SOURCE_KEY_PREV, 0));
+	assert_true(src.seek(src.ctx, SOURCE_KEY_NEXT, 0));
+	assert_int_equal(cursor(&src), 1000);
+	assert_true(src.seek(src.ctx, SOURCE_KEY_NEXT, 0));
+	assert_int_equal(cursor(&src), 2000);
+	assert_true(src.seek(src.ctx, SOURCE_KEY_NEXT, 0));
+	assert_int_equal(cursor(&src), 2265);
+	assert_false(src.seek(src.ctx, SOURCE_KEY_NEXT, 0));
+	assert_false(src.seek(src.ctx, SOURCE_FRAME_NEXT, 0));
+	assert_true(src.done(src.ctx));
+	assert_int_equal(src.step(src.ctx, why, sizeof why), SOURCE_END);
+	assert_int_equal(where(&src).frame, 18);
+	assert_true(src.seek(src.ctx, SOURCE_KEY_PREV, 0));
+	assert_int_equal(cursor(&src), 2000);
+	assert_true(src.seek(src.ctx, SOURCE_FIRST, 0));
+	assert_int_equal(cursor(&src), 0);
+	assert_false(src.done(src.ctx));
+	assert_true(src.seek(src.ctx, SOURCE_LAST, 0));
+	assert_int_equal(cursor(&src), 2265);
+	assert_false(src.seek(src.ctx, SOURCE_LAST, 0));	/* already there */
+	source_replay_close(&sr);
+}
+
+static void
+frames_and_steps(void **state)
+{
+	struct source src;
+	struct source_replay sr;
+	struct source_position p;
+	struct source_state s;
+	long f, g;
+	char why[200];
+
+	(void)state;
+	open_tablecloth(&src, &sr);
+	/* a frame every 0.02 s of a 0.000132486 s step: 151 steps on */
+	assert_int_equal(src.step(src.ctx, why, sizeof why), SOURCE_STEPPED);
+	assert_int_equal(cursor(&src), 151);
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_NEXT, 0));
+	assert_int_equal(cursor(&src), 302);
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_PREV, 0));
+	assert_int_equal(cursor(&src), 151);
+	/* a step between frames: the frame at or before it */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1500));
+	p = where(&src);
+	assert_int_equal(cursor(&src), 1500);
+	f = p.frame_step;
+	assert_true(f < 1500 && f > 1500 - 152);
+	src.state(src.ctx, &s);
+	assert_double_equal(s.t, 1500 * sr.rp.meta.dt_set, 1e-9);	/* the step's own time */
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_NEXT, 0));
+	g = cursor(&src);
+	assert_true(g > 1500 && g - f <= 152);
+	assert_int_equal(where(&src).frame, p.frame + 1);
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1500));
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_PREV, 0));
+	assert_int_equal(cursor(&src), f);
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1500));
+	assert_true(src.seek(src.ctx, SOURCE_KEY_PREV, 0));
+	assert_int_equal(cursor(&src), 1000);
+	/* clamped */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, -5));
+	assert_int_equal(cursor(&src), 0);
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1L << 40));
+	assert_int_equal(cursor(&src), 2265);
+	source_replay_close(&sr);
+}
+
+static void
+events_stats_and_state(void **state)
+{
+	struct source src;
+	struct source_replay sr;
+	struct source_state s;
+	struct source_stats ss;
+	struct evlog log;
+	const struct contact_event *ev;
+	size_t nev, k;
+	long before;
+	vec3 f;
+
+	(void)state;
+	open_tablecloth(&src, &sr);
+	ev = src.events(src.ctx, &nev);
+	assert_int_equal(nev, 0);
+	src.stats(src.ctx, &ss);
+	assert_true(ss.active);
+	assert_int_equal(ss.total->contacts[CONTACT_OBSTACLE], 0);
+
+	/* at step 1000, the events of step 999 (135 on the table) */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1000));
+	ev = src.events(src.ctx, &nev);
+	assert_int_equal(nev, 135);
+	for (k = 0; k < nev; k++)
+		assert_int_equal(ev[k].step, 999);
+	src.stats(src.ctx, &ss);
+	assert_int_equal(ss.step->contacts[CONTACT_OBSTACLE], 135);
+	assert_true(ss.total->contacts[CONTACT_OBSTACLE] > 135);
+	/* a keyframe: the exact state, and so the force */
+	src.state(src.ctx, &s);
+	assert_null(s.v_note);
+	assert_true(src.force(src.ctx, 312, &f));
+
+	assert_int_equal(evlog_init(&log, s.cl->n), 0);
+	src.history(src.ctx, &log);
+	before = log.total;
+	assert_true(before >= 135);
+	assert_int_equal(evlog_get(&log, ev[0].node, 0)->step, 999);
+	/* every event, at the end */
+	assert_true(src.seek(src.ctx, SOURCE_LAST, 0));
+	evlog_clear(&log);
+	src.history(src.ctx, &log);
+	assert_int_equal(log.total, 134076);	/* as drape info counts them */
+	evlog_free(&log);
+
+	/* a frame: positions only, velocities their difference */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1057));
+	src.state(src.ctx, &s);
+	assert_non_null(s.v_note);
+	assert_false(src.force(src.ctx, 312, &f));
+	for (k = 0; k < 3 * (size_t)s.cl->n; k++)
+		assert_true(isfinite(s.v[k]));
+	source_replay_close(&sr);
+}
+
+static void
+screen_of_a_replay(void **state)
+{
+	struct source src;
+	struct source_replay sr;
+	struct source_state s;
+	struct source_position p;
+	struct status_info si;
+	struct evlog log;
+	struct text t;
+	char line[TEXT_WIDTH];
+
+	(void)state;
+	open_tablecloth(&src, &sr);
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1500));
+	src.state(src.ctx, &s);
+	src.position(src.ctx, &p);
+	si = (struct status_info){ &s, 0, "replay", 1, "no", &p };
+	screen_status(line, 80, &si);
+	assert_true(strlen(line) <= 80);
+	assert_non_null(strstr(line, "tablecloth.drr replay step 1500 "));
+	assert_non_null(strstr(line, "frame 11/18@1359"));
+	screen_status(line, 150, &si);
+	assert_non_null(strstr(line, "step 1500 of 2265"));
+	assert_int_equal(evlog_init(&log, s.cl->n), 0);
+	text_init(&t, 30);
+	screen_node(&t, &s, 312, NULL, &log);
+	assert_non_null(strstr(t.line[2], "v~"));
+	assert_string_equal(t.line[4], "v: frame differences");
+	text_init(&t, 60);
+	screen_help(&t, true);
+	assert_true(t.n > 10);
+	evlog_free(&log);
+	source_replay_close(&sr);
+}
+
+/* A frames chunk with a flipped byte: the rest shows. */
+static void
+damaged_chunk(void **state)
+{
+	struct replay rp;
+	struct drape_err err;
+	struct source src;
+	struct source_replay sr;
+	char path[] = "/tmp/drape-test-XXXXXX";
+	unsigned char *buf;
+	long len;
+	size_t i;
+	uint64_t at = 0;
+	FILE *f;
+	int fd;
+
+	(void)state;
+	assert_int_equal(replay_open(&rp, TABLECLOTH, &err), 0);
+	for (i = 0; i < rp.nchunks && at == 0; i++)
+		if (rp.chunk[i].kind == REPLAY_FRAMES)
+			at = rp.chunk[i].offset + 32 + rp.chunk[i].comp_len / 2;
+	replay_close(&rp);
+	assert_true(at > 0);
+	assert_non_null(f = fopen(TABLECLOTH, "rb"));
+	assert_int_equal(fseek(f, 0, SEEK_END), 0);
+	assert_true((len = ftell(f)) > 0);
+	rewind(f);
+	assert_non_null(buf = malloc((size_t)len));
+	assert_int_equal(fread(buf, 1, (size_t)len, f), (size_t)len);
+	fclose(f);
+	buf[at] ^= 0x40;
+	assert_true((fd = mkstemp(path)) >= 0);
+	assert_non_null(f = fdopen(fd, "wb"));
+	assert_int_equal(fwrite(buf, 1, (size_t)len, f), (size_t)len);
+	assert_int_equal(fclose(f), 0);
+	free(buf);
+
+	if (source_replay_open(&src, &sr, path, &err) != 0)
+		fail_msg("a damaged frames chunk: %s", err.msg);
+	assert_int_equal(sr.rp.nbad, 1);
+	assert_true(where(&src).frames < 18);
+	assert_true(src.seek(src.ctx, SOURCE_LAST, 0));
+	assert_int_equal(cursor(&src), 2265);
+	assert_true(src.seek(src.ctx, SOURCE_KEY_PREV, 0));
+	assert_int_equal(cursor(&src), 2000);
+	source_replay_close(&sr);
+	unlink(path);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(keyframes_and_ends),
+		cmocka_unit_test(frames_and_steps),
+		cmocka_unit_test(events_stats_and_state),
+		cmocka_unit_test(screen_of_a_replay),
+		cmocka_unit_test(damaged_chunk),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

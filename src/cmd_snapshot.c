@@ -1,5 +1,6 @@
-/* cmd_snapshot.c: `drape snapshot`: a scene run N steps headless, its view
- * printed as text, so that a view can be tested, piped and pasted. */
+/* cmd_snapshot.c: `drape snapshot`: a scene run N steps headless, or a
+ * replay at the frame at or before step N, its view printed as text, so
+ * that a view can be tested, piped and pasted. */
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,6 +9,7 @@
 #include "cmd.h"
 #include "raster.h"
 #include "scene.h"
+#include "source.h"
 #include "stepper.h"
 #include "view.h"
 
@@ -54,6 +56,76 @@ print_grid(const struct raster *r)
 	return fflush(stdout) == 0 ? 0 : -1;
 }
 
+/* The view drawn and printed; an exit status. */
+static int
+draw_and_print(const struct camera *cam, int w, int h, const struct scene *sc, const double *x,
+    const struct cloth *cl, const struct contact_event *ev, size_t nev)
+{
+	struct raster r;
+	int rc = EXIT_OK;
+
+	raster_init(&r);
+	if (raster_resize(&r, w, h) != 0) {
+		fprintf(stderr, "drape snapshot: out of memory\n");
+		rc = EXIT_RUNTIME;
+	} else {
+		view_draw(&r, cam, sc, x, cl->n, cl->tri, cl->ntri, ev, nev, -1);
+		if (print_grid(&r) != 0) {
+			perror("drape: stdout");
+			rc = EXIT_RUNTIME;
+		}
+	}
+	raster_free(&r);
+	return rc;
+}
+
+/* A replay at step: the frame at or before it, the step's events marked. */
+static int
+snapshot_replay(const char *path, long step, int preset, bool perspective, int w, int h)
+{
+	struct source src;
+	struct source_replay sr;
+	struct source_state s;
+	struct source_position p;
+	struct drape_err err;
+	struct camera cam;
+	const struct contact_event *ev;
+	size_t nev;
+	vec3 target;
+	double radius;
+	int rc;
+
+	if (source_replay_open(&src, &sr, path, &err) != 0) {
+		fprintf(stderr, "drape snapshot: %s\n", err.msg);
+		return EXIT_USAGE;
+	}
+	src.position(src.ctx, &p);
+	if (step > p.last) {
+		fprintf(stderr, "drape snapshot: --step %ld: %s ends at step %ld\n", step, path,
+		    p.last);
+		source_replay_close(&sr);
+		return EXIT_USAGE;
+	}
+	if (!src.seek(src.ctx, SOURCE_GOTO, step)) {
+		fprintf(stderr, "drape snapshot: %s: out of memory\n", path);
+		source_replay_close(&sr);
+		return EXIT_RUNTIME;
+	}
+	src.state(src.ctx, &s);
+	src.position(src.ctx, &p);
+	if (p.frame_step != step)
+		fprintf(stderr, "drape snapshot: %s: step %ld shows the frame of step %ld\n", path,
+		    step, p.frame_step);
+	/* framed at the start, as the TUI frames it */
+	view_frame(s.sc, s.cl->x0, s.cl->n, &target, &radius);
+	camera_preset(&cam, (enum view_preset)preset, target, radius);
+	cam.perspective = perspective;
+	ev = src.events(src.ctx, &nev);
+	rc = draw_and_print(&cam, w, h, s.sc, s.x, s.cl, ev, nev);
+	source_replay_close(&sr);
+	return rc;
+}
+
 int
 cmd_snapshot(int argc, char **argv)
 {
@@ -73,7 +145,6 @@ cmd_snapshot(int argc, char **argv)
 	struct drape_err err;
 	struct blowup bl;
 	struct camera cam;
-	struct raster r;
 	vec3 target;
 	double radius;
 	char *end, tail;
@@ -117,13 +188,8 @@ cmd_snapshot(int argc, char **argv)
 		usage(stderr);
 		return EXIT_USAGE;
 	}
-	/* TODO(replay): a replay FILE is seeked to --step here once replay
-	 * files exist; until then it is refused. */
-	if (looks_binary(argv[optind])) {
-		fprintf(stderr, "drape snapshot: %s: not a scene (replay files are not supported "
-		    "yet)\n", argv[optind]);
-		return EXIT_USAGE;
-	}
+	if (looks_binary(argv[optind]))
+		return snapshot_replay(argv[optind], steps, preset, perspective, w, h);
 	if (scene_load(&sc, argv[optind], &err) != 0) {
 		fprintf(stderr, "drape: %s\n", err.msg);
 		return EXIT_USAGE;
@@ -149,21 +215,9 @@ cmd_snapshot(int argc, char **argv)
 			rc = EXIT_BLOWUP;
 		}
 	}
-	if (rc == EXIT_OK) {
-		raster_init(&r);
-		if (raster_resize(&r, w, h) != 0) {
-			fprintf(stderr, "drape snapshot: out of memory\n");
-			rc = EXIT_RUNTIME;
-		} else {
-			view_draw(&r, &cam, &sc, stepper_x(&st), st.cl.n, st.cl.tri, st.cl.ntri,
-			    steps > 0 ? st.col.ev : NULL, steps > 0 ? st.col.nev : 0, -1);
-			if (print_grid(&r) != 0) {
-				perror("drape: stdout");
-				rc = EXIT_RUNTIME;
-			}
-		}
-		raster_free(&r);
-	}
+	if (rc == EXIT_OK)
+		rc = draw_and_print(&cam, w, h, &sc, stepper_x(&st), &st.cl,
+		    steps > 0 ? st.col.ev : NULL, steps > 0 ? st.col.nev : 0);
 	stepper_free(&st);
 	scene_free(&sc);
 	return rc;

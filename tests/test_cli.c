@@ -286,6 +286,45 @@ two_runs_same_hash(void **state)
 	assert_string_equal(strstr(a.out, "state hash"), strstr(b.out, "state hash"));
 }
 
+/* A replay's snapshot at its last step (a keyframe, exact) is the scene's
+ * at that step; a step between frames shows the frame before it. */
+static void
+snapshot_of_a_replay(void **state)
+{
+	struct result r;
+	char args[1024], path[256], *scene_view;
+	const char *scene = TOP_SRCDIR "/scenes/hanging.scene", *at;
+	long steps;
+
+	(void)state;
+	snprintf(path, sizeof path, "%s/snap.drr", dir);
+	snprintf(args, sizeof args, "run --headless --until 5ms --record '%s' '%s'", path, scene);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(at = strstr(r.out, "steps        "));
+	steps = strtol(at + 13, NULL, 10);
+	assert_true(steps > 2);
+	snprintf(args, sizeof args, "snapshot --step %ld --size 60x20 '%s'", steps, scene);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(scene_view = strdup(r.out));
+	snprintf(args, sizeof args, "snapshot --step %ld --size 60x20 '%s'", steps, path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_string_equal(r.out, scene_view);
+	assert_string_equal(r.err, "");
+	free(scene_view);
+	/* the frames are 20 ms apart: step 1 shows step 0's */
+	snprintf(args, sizeof args, "snapshot --step 1 --size 60x20 '%s'", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "step 1 shows the frame of step 0"));
+	snprintf(args, sizeof args, "snapshot --step %ld '%s'", steps + 1, path);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "ends at step"));
+}
+
 int
 main(void)
 {
@@ -297,6 +336,7 @@ main(void)
 		cmocka_unit_test(blowup_exits_3),
 		cmocka_unit_test(final_obj),
 		cmocka_unit_test(two_runs_same_hash),
+		cmocka_unit_test(snapshot_of_a_replay),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

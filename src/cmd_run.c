@@ -1,7 +1,7 @@
 /* cmd_run.c: `drape run` and `drape SCENE`: the TUI on a live run when on a
- * terminal, else a headless run with progress and a summary; a headless
- * run may record a replay (--record) or continue one from a keyframe
- * (--resume). */
+ * terminal, else a headless run with progress and a summary; a run may
+ * record a replay (--record, in the TUI too), and a headless one continue
+ * one from a keyframe (--resume). */
 #include <errno.h>
 #include <getopt.h>
 #include <inttypes.h>
@@ -221,16 +221,37 @@ write_final(const struct stepper *st, const char *path)
 	return EXIT_OK;
 }
 
-/* The front end on the live run; its messages once the terminal is back. */
+/* The front end on the live run, recording into record from the start if
+ * not NULL; its messages once the terminal is back. A recording still on
+ * at the end (q, a signal) is closed here. */
 static int
-run_tui(struct stepper *st, const struct tui_opts *opt)
+run_tui(struct stepper *st, const struct tui_opts *opt, const char *record,
+    long keyframe_every)
 {
 	struct source src;
 	struct source_live lv;
 	struct tui_result res;
+	char why[600], *name = NULL;
+	const char *rec;
+	int rc = EXIT_OK;
 
 	source_live(&src, &lv, st);
+	lv.keyframe_every = keyframe_every;
+	if (record != NULL && src.record(src.ctx, record, why, sizeof why) != 0) {
+		fprintf(stderr, "drape: --record: %s\n", why);
+		source_live_free(&lv);
+		return EXIT_RUNTIME;
+	}
 	tui_run(&src, opt, &res);
+	if ((rec = src.recording(src.ctx, NULL)) != NULL && (name = strdup(rec)) == NULL)
+		rc = EXIT_RUNTIME;
+	if (rec != NULL && src.record(src.ctx, NULL, why, sizeof why) != 0) {
+		fprintf(stderr, "drape: %s\n", why);
+		rc = EXIT_RUNTIME;
+	} else if (name != NULL) {
+		fprintf(stderr, "drape: recorded %s (to step %ld)\n", name, st->step);
+	}
+	free(name);
 	source_live_free(&lv);
 	switch (res.end) {
 	case TUI_ERROR:
@@ -241,6 +262,8 @@ run_tui(struct stepper *st, const struct tui_opts *opt)
 	case TUI_QUIT:
 		break;
 	}
+	if (rc != EXIT_OK)
+		return rc;
 	if (res.blown_up) {
 		fprintf(stderr, "drape: %s: %s\n", st->sc->path, res.why);
 		return EXIT_BLOWUP;
@@ -525,6 +548,17 @@ cmd_run(int argc, char **argv)
 			return EXIT_USAGE;
 		}
 	}
+	/* a resumed run is headless: its summary is the point */
+	if (resume != NULL)
+		headless = true;
+	if (!headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
+		fprintf(stderr, "drape: not a terminal: running headless\n");
+		headless = true;
+	}
+	if (!headless) {
+		rc = run_tui(&st, &topt, record, keyframe_every);
+		goto done;
+	}
 	if (record != NULL) {
 		if (keyframe_every == 0)
 			keyframe_every = record_default_keyframes(&st);
@@ -535,18 +569,6 @@ cmd_run(int argc, char **argv)
 			return EXIT_RUNTIME;
 		}
 		recording = true;
-	}
-
-	/* recording and resuming run headless until the front end records */
-	if (record != NULL || resume != NULL)
-		headless = true;
-	if (!headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
-		fprintf(stderr, "drape: not a terminal: running headless\n");
-		headless = true;
-	}
-	if (!headless) {
-		rc = run_tui(&st, &topt);
-		goto done;
 	}
 
 	catch_signals();

@@ -2,7 +2,11 @@
 # tui.sh: the TUI of the real binary in a tmux pane, at 80 x 24 and at
 # 200 x 60: the panels are there, n advances the step by exactly one, a
 # resize redraws to the new size, q leaves a clean shell prompt (exit 0);
-# and not on a terminal, drape falls back to headless and says so.
+# and not on a terminal, drape falls back to headless and says so. A
+# replay: g goes to a step, the inspector lists a node's event of it, End,
+# Home, PgDn, the arrows; r records a live run, --record on a terminal
+# records from the start, each into a file drape info finds whole, q and
+# SIGTERM closing it.
 # Skipped (77) without tmux. Waits poll the pane, with a timeout.
 set -u
 
@@ -156,6 +160,99 @@ colour_run "" "-C"
 grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with -C"
 colour_run "env NO_COLOR=1" ""
 grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with NO_COLOR"
+
+# a replay recorded headless: keyframes every 100 steps, frames every 155
+"$DRAPE" run --headless --until 0.2 --keyframe-every 100 --record "$tmp/fall.drr" \
+	"$tmp/fall.scene" >"$tmp/out" 2>&1 || { cp "$tmp/out" "$tmp/screen"; fail "recording fall.drr"; }
+# an event a hundred events into the contacts: its step and node
+read -r ev_step ev_node < <("$DRAPE" events "$tmp/fall.drr" | sed -n '100p' | cut -f1,2)
+last_step=$(sed -n 's/^steps *\([0-9]*\).*/\1/p' "$tmp/out")
+replay_session() {
+	local cols=$1 rows=$2 side=$3
+	echo "== replay at $cols x $rows: step $((ev_step + 1)), node $ev_node"
+	tm new-session -d -s t -x "$cols" -y "$rows" "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "'$DRAPE' replay '$tmp/fall.drr'; echo EXIT=\$?" Enter
+	wait_for 'fall.drr +replay +step 0 ' || return
+	tm send-keys -t t g
+	wait_for 'go to step: _' || return
+	tm send-keys -t t $(echo "$((ev_step + 1))" | sed 's/./& /g') Enter
+	wait_for "replay +step $((ev_step + 1)) " || return
+	[ "$rows" -lt 40 ] && tm send-keys -t t Tab Tab
+	tm send-keys -t t / $(echo "$ev_node" | sed 's/./& /g') Enter
+	wait_for "node $ev_node \\(i" || return
+	grep -Eq "^ *$ev_step obs +ob0 " <(cut -c $((cols - side + 1))- "$tmp/screen") ||
+		fail "node $ev_node's event of step $ev_step is not in the inspector"
+	tm send-keys -t t End
+	wait_for "replay end +step $last_step " || return
+	tm send-keys -t t Home
+	wait_for "replay +step 0 " || return
+	tm send-keys -t t NPage
+	wait_for "replay +step 100 " || return
+	tm send-keys -t t NPage
+	wait_for "replay +step 200 " || return
+	tm send-keys -t t PPage Right
+	wait_for "replay +step 155 " || return
+	tm send-keys -t t Left
+	wait_for "replay +step 100 " || return
+	tm send-keys -t t q
+	wait_for 'EXIT=[0-9]+' || return
+	grep -q 'EXIT=0' "$tmp/screen" || fail "drape replay did not exit with 0"
+	tm kill-session -t t
+}
+replay_session 80 24 30
+replay_session 200 60 48
+"$DRAPE" replay "$tmp/fall.drr" </dev/null >"$tmp/out" 2>"$tmp/screen"
+rc=$?
+[ $rc -eq 2 ] && grep -q 'not a terminal.*drape info' "$tmp/screen" ||
+	fail "drape replay off a terminal: status $rc"
+
+# r in a live run, in a directory of its own; --record from the start
+mkdir "$tmp/rec"
+record_session() {
+	local how=$1 f
+	echo "== recording: $how"
+	tm new-session -d -s t -x 120 -y 40 -c "$tmp/rec" "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	case $how in
+	r)
+		tm send-keys -t t "'$DRAPE' run --paused '$tmp/fall.scene'; echo EXIT=\$?" Enter
+		wait_for 'step 0 .*paused' || return
+		tm send-keys -t t n r
+		wait_for 'recording into drape-[0-9]{8}-[0-9]{6}.drr' || return
+		tm send-keys -t t n n n
+		wait_for 'step 4 ' || return
+		tm send-keys -t t r
+		wait_for 'recorded drape-[0-9-]*.drr' || return
+		tm send-keys -t t q ;;
+	record|sigterm)
+		tm send-keys -t t "sh -c 'echo \$\$ >$tmp/pid; exec $DRAPE run --paused --record from-start.drr $tmp/fall.scene'; echo EXIT=\$?" Enter
+		wait_for 'recording into from-start.drr' || return
+		tm send-keys -t t n n
+		wait_for 'step 2 ' || return
+		if [ "$how" = sigterm ]; then
+			kill -TERM "$(cat "$tmp/pid")"
+		else
+			tm send-keys -t t q
+		fi ;;
+	esac
+	wait_for 'EXIT=[0-9]+' || return
+	if [ "$how" = sigterm ]; then
+		grep -q 'EXIT=143' "$tmp/screen" || fail "SIGTERM while recording: not exit 143"
+	else
+		grep -q 'EXIT=0' "$tmp/screen" || fail "recording: not exit 0"
+	fi
+	for f in "$tmp"/rec/*.drr; do
+		"$DRAPE" info "$f" >"$tmp/info" 2>&1 && grep -q 'integrity *whole' "$tmp/info" ||
+			{ cp "$tmp/info" "$tmp/screen"; fail "$how: $f is not whole"; }
+	done
+	ls "$tmp"/rec/*.drr >/dev/null 2>&1 || fail "$how: no replay recorded"
+	rm -f "$tmp"/rec/*.drr
+	tm kill-session -t t
+}
+record_session r
+record_session record
+record_session sigterm
 
 # not on a terminal
 "$DRAPE" run --until 1ms "$tmp/fall.scene" </dev/null >"$tmp/out" 2>"$tmp/err"

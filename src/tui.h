@@ -1,6 +1,6 @@
-/* tui.h: the ncurses front end on a source (a live run now; a replay
- * later, see source.h): the view, the status line, the collision, hash and
- * node panels and the help screen, driven by keys. The screen model is
+/* tui.h: the ncurses front end on a source (a live run, or a replay that
+ * it seeks in; see source.h): the view, the status line, the collision,
+ * hash and node panels and the help screen, driven by keys. The screen model is
  * screen.h; this draws it and reads the keys. It restores the terminal
  * (endwin) before it returns, whatever the reason. */
 #ifndef DRAPE_TUI_H

@@ -333,6 +333,8 @@ key(struct tui *ui, int ch)
 		break;
 	case ' ':
 		ui->running = !ui->running && !ui->ended && !ui->res->blown_up;
+		if (ui->replay && ui->ended)
+			say(ui, "end of the replay (Home goes back to the first step)");
 		ui->mark_wall = now();
 		ui->mark_t = s.t;
 		break;

@@ -2,7 +2,8 @@
  * (2265 steps, keyframes every 1000 steps and at the end, frames at 50 per
  * second): frame, keyframe and step seeking, the step's events and
  * statistics, the history for the inspector, velocities estimated between
- * frames and exact at keyframes, a damaged chunk skipped, the status line. */
+ * frames and exact at keyframes, a damaged chunk skipped, a cut file, the
+ * status line. */
 #include <unistd.h>
 
 #include "testutil.h"
@@ -270,6 +271,55 @@ damaged_chunk(void **state)
 	unlink(path);
 }
 
+/* Cut in the middle, as a killed run leaves it: the whole chunks show. */
+static void
+cut_file(void **state)
+{
+	struct drape_err err;
+	struct source src;
+	struct source_replay sr;
+	struct source_position p;
+	char path[] = "/tmp/drape-test-XXXXXX";
+	unsigned char *buf;
+	long len;
+	FILE *f;
+	int fd;
+
+	(void)state;
+	assert_non_null(f = fopen(TABLECLOTH, "rb"));
+	assert_int_equal(fseek(f, 0, SEEK_END), 0);
+	assert_true((len = ftell(f)) > 0);
+	rewind(f);
+	assert_non_null(buf = malloc((size_t)len));
+	assert_int_equal(fread(buf, 1, (size_t)len, f), (size_t)len);
+	fclose(f);
+	assert_true((fd = mkstemp(path)) >= 0);
+	assert_non_null(f = fdopen(fd, "wb"));
+	assert_int_equal(fwrite(buf, 1, (size_t)len / 2, f), (size_t)len / 2);
+	assert_int_equal(fclose(f), 0);
+	free(buf);
+
+	if (source_replay_open(&src, &sr, path, &err) != 0)
+		fail_msg("a cut replay: %s", err.msg);
+	assert_true(sr.rp.cut);
+	p = where(&src);
+	assert_int_equal(p.first, 0);
+	assert_true(p.last > 0 && p.last < 2265);
+	assert_true(src.seek(src.ctx, SOURCE_LAST, 0));
+	assert_int_equal(cursor(&src), p.last);
+	/* its frames were still pending: the keyframes at 0 and 1000 show */
+	assert_int_equal(p.frames, 2);
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 500));
+	assert_int_equal(where(&src).frame_step, 0);
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_NEXT, 0));
+	assert_int_equal(cursor(&src), 1000);
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_NEXT, 0));	/* the steps after it */
+	assert_int_equal(cursor(&src), p.last);
+	assert_int_equal(where(&src).frame_step, 1000);
+	source_replay_close(&sr);
+	unlink(path);
+}
+
 int
 main(void)
 {
@@ -279,6 +329,7 @@ main(void)
 		cmocka_unit_test(events_stats_and_state),
 		cmocka_unit_test(screen_of_a_replay),
 		cmocka_unit_test(damaged_chunk),
+		cmocka_unit_test(cut_file),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

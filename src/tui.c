@@ -170,6 +170,7 @@ seek_event(struct tui *ui)
 	long before = ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
 	double start = now();
 	long steps = 0;
+	const char *unit = ui->replay ? "frames" : "steps";	/* a replay steps by frames */
 	struct source_state s;
 
 	if (ui->selected < 0 || ui->selected >= ui->log.n)
@@ -180,11 +181,11 @@ seek_event(struct tui *ui)
 		steps++;
 	ui->src->state(ui->src->ctx, &s);
 	if (ui->log.count[ui->selected] > before)
-		say(ui, "node %d: an event at step %ld (%ld steps on)", ui->selected,
-		    evlog_get(&ui->log, ui->selected, 0)->step, steps);
+		say(ui, "node %d: an event at step %ld (%ld %s on)", ui->selected,
+		    evlog_get(&ui->log, ui->selected, 0)->step, steps, unit);
 	else if (!ui->ended && !ui->res->blown_up)
-		say(ui, "node %d: no event in %ld steps (to step %ld); e again goes on",
-		    ui->selected, steps, s.step);
+		say(ui, "node %d: no event in %ld %s (to step %ld); e again goes on",
+		    ui->selected, steps, unit, s.step);
 }
 
 static void
@@ -235,6 +236,10 @@ toggle_recording(struct tui *ui)
 		if ((f = fopen(name, "rb")) == NULL)
 			break;	/* not there: ours */
 		fclose(f);
+	}
+	if (k == 100) {
+		say(ui, "recording: 99 drape-*.drr files named for this second exist already");
+		return;
 	}
 	if (ui->src->record(ui->src->ctx, name, why, sizeof why) != 0)
 		say(ui, "recording: %s", why);

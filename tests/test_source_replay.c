@@ -3,7 +3,8 @@
  * second): frame, keyframe and step seeking, the step's events and
  * statistics, the history for the inspector, velocities estimated between
  * frames and exact at keyframes, a damaged chunk skipped, a cut file, the
- * status line. */
+ * status line; and a live run recording itself between record(path) and
+ * record(NULL). */
 #include <unistd.h>
 
 #include "testutil.h"
@@ -320,6 +321,56 @@ cut_file(void **state)
 	unlink(path);
 }
 
+/* A live run records itself between record(path) and record(NULL); the
+ * replay then plays from the step it started at to the step it stopped. */
+static void
+live_run_records(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	struct drape_err err;
+	struct source live, src;
+	struct source_live lv;
+	struct source_replay sr;
+	char path[] = "/tmp/drape-test-XXXXXX", why[600];
+	const char *error;
+	int k, fd;
+
+	(void)state;
+	assert_true((fd = mkstemp(path)) >= 0);
+	close(fd);
+	load_shipped(&sc, SCENE_DIR "hanging.scene");
+	assert_int_equal(stepper_init(&st, &sc, &err), 0);
+	source_live(&live, &lv, &st);
+	assert_null(live.seek);
+	assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
+	assert_null(live.recording(live.ctx, NULL));
+	assert_int_equal(live.record(live.ctx, path, why, sizeof why), 0);
+	assert_string_equal(live.recording(live.ctx, &error), path);
+	assert_null(error);
+	assert_int_equal(live.record(live.ctx, path, why, sizeof why), -1);
+	assert_non_null(strstr(why, "already recording"));
+	for (k = 0; k < 5; k++)
+		assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
+	assert_int_equal(live.record(live.ctx, NULL, why, sizeof why), 0);
+	assert_null(live.recording(live.ctx, NULL));
+	assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
+	source_live_free(&lv);
+	stepper_free(&st);
+	scene_free(&sc);
+
+	if (source_replay_open(&src, &sr, path, &err) != 0)
+		fail_msg("the live run's replay: %s", err.msg);
+	assert_true((sr.rp.hdr.flags & REPLAY_CLOSED) != 0);
+	assert_int_equal(sr.rp.nbad, 0);
+	assert_int_equal(where(&src).first, 1);
+	assert_int_equal(where(&src).last, 6);
+	assert_true(src.seek(src.ctx, SOURCE_KEY_NEXT, 0));	/* the keyframe at the stop */
+	assert_int_equal(cursor(&src), 6);
+	source_replay_close(&sr);
+	unlink(path);
+}
+
 int
 main(void)
 {
@@ -330,6 +381,7 @@ main(void)
 		cmocka_unit_test(screen_of_a_replay),
 		cmocka_unit_test(damaged_chunk),
 		cmocka_unit_test(cut_file),
+		cmocka_unit_test(live_run_records),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

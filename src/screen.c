@@ -212,12 +212,10 @@ screen_help(struct text *t, bool replay)
 	text_add(t, "drape: keys%s", replay ? " (a replay)" : "");
 	text_add(t, " ");
 	if (replay) {
-		text_add(t, "  space         play / pause (forward, frame by frame)");
+		text_add(t, "  space         play / pause (+ / -: more / fewer frames a redraw)");
 		text_add(t, "  n . or Right  next frame; Left previous frame");
-		text_add(t, "  PgDn / PgUp   next / previous keyframe");
+		text_add(t, "  PgDn / PgUp   next / previous keyframe; Home / End first / last step");
 		text_add(t, "  g             go to a step (Enter, Esc cancels)");
-		text_add(t, "  Home / End    first / last step");
-		text_add(t, "  + / -         more / fewer frames a redraw when playing");
 		text_add(t, "  h j k l, Up Down   rotate (yaw, pitch)");
 	} else {
 		text_add(t, "  space         run / pause");

@@ -3,7 +3,10 @@
  * it, the events and statistics those of the step that led to it. Frames
  * hold float32 positions only: there the velocities are the difference to
  * the previous frame and the force is not known; a keyframe has both
- * exactly. Chunks that would not decode are skipped: what is intact shows. */
+ * exactly. Chunks that would not decode are skipped: what is intact shows.
+ * The steps chunks are decoded once and kept (statistics and events of
+ * every step, for the totals and the inspector's history at any step);
+ * frames and keyframes are read when shown, the last frames chunk kept. */
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>

@@ -219,6 +219,7 @@ screen_of_a_replay(void **state)
 	text_init(&t, 60);
 	screen_help(&t, true);
 	assert_true(t.n > 10);
+	assert_true(t.n <= 24 - 1);	/* all of it at 80 x 24, under the top line */
 	evlog_free(&log);
 	source_replay_close(&sr);
 }

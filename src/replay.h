@@ -61,6 +61,7 @@ _Static_assert(offsetof(struct replay_chunk_header, first_step) == 8 &&
 /* What a run was made of: enough to make it again. */
 struct replay_meta {
 	char *name, *path, *text;	/* scene name, its path when recorded, its text */
+	char *version;		/* of the drape that recorded it */
 	double duration;	/* resolved --until */
 	double dt;		/* resolved --dt: 0 for auto */
 	int integrator;		/* enum integrator_kind */

@@ -67,7 +67,7 @@ cmd_info(int argc, char **argv)
 	printf("replay       %s (version %u, %s)\n", argv[1], r.hdr.version,
 	    !(r.hdr.flags & REPLAY_CLOSED) ? "not closed: the run was cut short" :
 	    r.cut ? "closed cleanly, then cut short" : "closed cleanly");
-	printf("scene        %s (recorded from %s)\n", m->name, m->path);
+	printf("scene        %s (recorded from %s by drape %s)\n", m->name, m->path, m->version);
 	printf("nodes        %u (%u triangles)\n", m->nodes, m->triangles);
 	printf("options      --until %.9g --integrator %s --dt ", m->duration,
 	    m->integrator >= 0 && m->integrator < INTEG_COUNT ?

@@ -15,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "config.h"
 #include "cmd.h"
 #include "obj.h"
 #include "record.h"
@@ -377,6 +378,10 @@ resume_run(struct stepper *st, struct scene *sc, const char *arg, double until,
 		stepper_free(st);
 		goto fail_scene;
 	}
+	if (strcmp(rp.meta.version, PACKAGE_VERSION) != 0)
+		fprintf(stderr, "drape run: --resume: %s was recorded by drape %s, this is %s: "
+		    "the continuation may differ from the recorded run\n", file, rp.meta.version,
+		    PACKAGE_VERSION);
 	if (*keyframe_every == 0)
 		*keyframe_every = rp.meta.keyframe_every > 0 ? rp.meta.keyframe_every : 0;
 	printf("resumed      from %s at step %ld (t = %.9g s)\n", file, kf.step, kf.t);

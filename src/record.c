@@ -2,6 +2,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "config.h"
 #include "record.h"
 
 long
@@ -40,6 +41,7 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	m.name = sc->name;
 	m.path = sc->path;
 	m.text = sc->text;
+	m.version = PACKAGE_VERSION;
 	m.duration = sc->duration;
 	m.dt = sc->dt;
 	m.integrator = (int)sc->integrator;

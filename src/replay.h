@@ -53,10 +53,15 @@ struct replay_chunk_header {
 
 _Static_assert(sizeof(struct replay_file_header) == 64, "replay header is 64 bytes");
 _Static_assert(sizeof(struct replay_chunk_header) == 32, "chunk header is 32 bytes");
+_Static_assert(offsetof(struct replay_file_header, index_offset) == 24 &&
+    offsetof(struct replay_file_header, crc) == 60, "replay header layout");
+_Static_assert(offsetof(struct replay_chunk_header, first_step) == 8 &&
+    offsetof(struct replay_chunk_header, crc) == 28, "chunk header layout");
 
 /* What a run was made of: enough to make it again. */
 struct replay_meta {
 	char *name, *path, *text;	/* scene name, its path when recorded, its text */
+	char *version;		/* of the drape that recorded it */
 	double duration;	/* resolved --until */
 	double dt;		/* resolved --dt: 0 for auto */
 	int integrator;		/* enum integrator_kind */

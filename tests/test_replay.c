@@ -343,6 +343,20 @@ bit_flips(void **state)
 		}
 	}
 	assert_true(flips > 100);
+	/* a damaged keyframe is passed over for the one before it */
+	{
+		long last = replay_find_keyframe(&whole, -1), before;
+		const struct replay_chunk *c = &whole.chunk[last];
+
+		assert_true(last >= 0);
+		memcpy(bad, buf, len);
+		bad[c->offset + sizeof(struct replay_chunk_header) + c->comp_len / 2] ^= 1;
+		assert_int_equal(replay_open_mem(&r, bad, len, &err), 0);
+		before = replay_find_keyframe(&r, -1);
+		assert_true(before >= 0);
+		assert_true(r.chunk[before].first_step < c->first_step);
+		replay_close(&r);
+	}
 	replay_close(&whole);
 	free(bad);
 	free(buf);

@@ -132,6 +132,12 @@ session() {
 	wait_for 'EXIT=[0-9]+' || return
 	grep -q 'EXIT=0' "$tmp/screen" || fail "drape did not exit with 0"
 	grep -Eq 'collisions|step [0-9]' "$tmp/screen" && fail "the TUI is still on the screen"
+	# the shell prints its prompt after EXIT=: wait for it
+	for i in $(seq 50); do
+		grep -v '^$' "$tmp/screen" | tail -n 1 | grep -q '^prompt\$' && break
+		sleep 0.1
+		capture
+	done
 	grep -v '^$' "$tmp/screen" | tail -n 1 | grep -q '^prompt\$' || fail "no shell prompt after q"
 	tm kill-session -t t
 }

@@ -88,6 +88,7 @@ commit=$(git -C "$srcdir" rev-parse --short HEAD 2>/dev/null || echo "?")
 ncpu=$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?")
 stamp=$(date -u '+%Y-%m-%d %H:%M UTC')
 echo "stability benchmark: $version (commit $commit), $stamp"
+echo "machine: $ncpu cores; load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 echo "scene $scene_name (damping c = $damping /s), stretch moduli times $factors; T = $until_t s; bisection to $rel"
 echo
 

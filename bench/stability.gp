@@ -1,0 +1,56 @@
+# Chart of bench/stability.sh's results (stability.csv): gnuplot -e "csvf=...;
+# outf=...; stamp=...; until_t=...; scene=...; damping=..." stability.gp
+# outf = '' draws it as text on stdout (set terminal dumb) instead of a PNG.
+#
+# Largest stable dt against the stiffness factor, log-log: measured points
+# (bisection on blow-up within until_t) joined by solid lines, the theory
+# limit of each method from the Gershgorin omega as a dashed line; a method
+# whose limit is below the smallest step searched is drawn at that step
+# with a down-pointing triangle.
+#
+# stability.csv columns: 1 factor, 2 omega_rad_s, 3 damping_per_s, 4 method,
+# 5 status, 6 dt_stable_s, 7 dt_unstable_s, 8 dt_theory_s,
+# 9 stable_over_theory, 10 stable_times_omega, 11 probes, 12 until_s
+
+if (!exists("csvf")) csvf = "stability.csv"
+if (!exists("outf")) outf = "stability.png"
+if (!exists("stamp")) stamp = ""
+if (!exists("until_t")) until_t = "?"
+if (!exists("scene")) scene = "?"
+if (!exists("damping")) damping = "?"
+
+methods = "euler symplectic-euler rk2 rk4"
+array col[4] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4"]
+array pt[4] = [4, 6, 8, 7]
+array thname[4] = ["c/omega^2", "2/omega", "(4c)^{1/3}/omega^{4/3}", "2 sqrt(2)/omega"]
+
+sel(m, st, cols) = sprintf("< awk -F, '$4 == \"%s\" && $5 ~ /%s/ { print %s }' '%s'", m, st, cols, csvf)
+
+set logscale xy
+set grid xtics ytics mytics
+set xlabel "stiffness factor (modulus_warp and modulus_weft times)" noenhanced
+set ylabel "largest stable dt (s)"
+set xtics (1, 4, 16, 64, 256)
+set xrange [0.7:370]
+
+if (outf eq "") {
+	set terminal dumb size 100,34
+	set format y "%.0e"
+	set title sprintf("largest stable dt, %s, T = %s s (points: measured, lines: theory)", scene, until_t)
+	set key outside right top
+	plot for [i = 1:4] sel(word(methods, i), "ok", "$1, $6") using 1:2 with points pt (i + 64) title word(methods, i), \
+		for [i = 1:4] sel(word(methods, i), ".", "$1, $8") using 1:2 with lines title "theory ". word(methods, i)
+} else {
+	set terminal pngcairo size 1100, 750 font "Sans,11"
+	set output outf
+	set format y "10^{%L}"
+	set title sprintf("drape: largest stable dt by bisection on blow-up within T = %s s, %s (damping c = %s /s), %s\nsolid: measured; dashed: theory from the Gershgorin omega; down triangle: limit below the smallest dt searched", \
+		until_t, scene, damping, stamp)
+	set key outside right top spacing 1.2
+	plot for [i = 1:4] sel(word(methods, i), "ok", "$1, $6") using 1:2 with linespoints \
+			lc rgb col[i] pt pt[i] ps 1.4 lw 2 title word(methods, i) . " (measured)", \
+		for [i = 1:4] sel(word(methods, i), "below", "$1, $7") using 1:2 with points \
+			lc rgb col[i] pt 11 ps 1.6 notitle, \
+		for [i = 1:4] sel(word(methods, i), ".", "$1, $8") using 1:2 with lines \
+			lc rgb col[i] dt 2 lw 1.5 title word(methods, i) . ": " . thname[i]
+}

@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# Stability benchmark: the largest stable step of each explicit integrator
+# as the cloth's stretch stiffness grows, against the limit theory gives.
+#
+# For each stiffness factor s of BENCH_ST_FACTORS it writes a copy of the
+# scene with modulus_warp and modulus_weft multiplied by s, reads omega (the
+# Gershgorin bound on the highest angular frequency, from the run summary),
+# and for each of euler, symplectic-euler, rk2 and rk4 finds by bisection
+# (on log dt) the largest dt at which `drape run --until T` does not blow up
+# (exit status 3) within T = BENCH_ST_UNTIL simulated seconds. The search
+# runs between dt = T / BENCH_ST_MAXSTEPS (the smallest step it can afford)
+# and 8 / omega, down to a ratio of 1 + BENCH_ST_REL between the stable and
+# the unstable step. Data go to $BENCH_RESULTS/stability.csv; with gnuplot,
+# the chart to stability.png and a text chart on stdout. See bench/README.md.
+#
+# Theory, for the fastest mode, omega, with mass-proportional damping c
+# (eigenvalues -c/2 +- i sqrt(omega^2 - c^2/4), of modulus omega):
+#   rk4               dt < 2 sqrt(2) / omega  (its interval on the imaginary axis)
+#   symplectic-euler  dt < 2 / omega
+#   euler             dt < c / omega^2        (unstable undamped; |1 + dt lambda| < 1)
+#   rk2               dt < (4 c)^(1/3) / omega^(4/3)  (|R|^2 = 1 - c dt + (omega dt)^4 / 4 + ...)
+# A run of finite length T only blows up once its fastest mode has grown
+# past the blow-up threshold, so euler's and rk2's measured limits sit above
+# these, by a margin that shrinks as T grows (see bench/README.md).
+#
+# Environment:
+#   BENCH_ST_SCENE     scene name under scenes/ (default hanging)
+#   BENCH_ST_FACTORS   stiffness factors (default 1 4 16 64 256)
+#   BENCH_ST_UNTIL     simulated time T of each run (default 0.05 s)
+#   BENCH_ST_MAXSTEPS  the most steps a run may take (default 1e6)
+#   BENCH_ST_REL       bisection stops when unstable / stable < 1 + this (default 0.01)
+#   BENCH_RESULTS      output directory (default bench/results)
+#   DRAPE, BENCH_SRCDIR, GNUPLOT  the binary, the source tree, the gnuplot
+set -u
+
+here=$(cd "$(dirname "$0")" && pwd)
+srcdir=${BENCH_SRCDIR:-$(cd "$here/.." && pwd)}
+drape=${DRAPE:-$srcdir/src/drape}
+out=${BENCH_RESULTS:-$srcdir/bench/results}
+scene_name=${BENCH_ST_SCENE:-hanging}
+factors=${BENCH_ST_FACTORS:-1 4 16 64 256}
+until_t=${BENCH_ST_UNTIL:-0.05}
+maxsteps=${BENCH_ST_MAXSTEPS:-1e6}
+rel=${BENCH_ST_REL:-0.01}
+methods="euler symplectic-euler rk2 rk4"
+
+die() { echo "stability.sh: $*" >&2; exit 2; }
+isnum() { awk -v t="$1" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }'; }
+for v in $factors $until_t $maxsteps $rel; do isnum "$v" || die "not a number > 0: '$v'"; done
+[ -x "$drape" ] || die "no binary at $drape: build first (make), or set DRAPE"
+src=$srcdir/scenes/$scene_name.scene
+[ -r "$src" ] || die "no scene $src"
+mkdir -p "$out" || die "cannot create $out"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/drape-st.XXXXXX") || die "mktemp failed"
+trap 'rm -rf "$tmp"' EXIT
+trap 'exit 130' INT TERM
+
+# the scene with modulus_warp and modulus_weft times s (number, then unit)
+scale_scene() { # src factor
+	awk -v s="$2" '
+	/^[ \t]*modulus_(warp|weft)[ \t]*=/ {
+		line = $0; sub(/#.*/, "", line)
+		key = line; sub(/[ \t]*=.*/, "", key); sub(/^[ \t]*/, "", key)
+		val = line; sub(/^[^=]*=[ \t]*/, "", val)
+		num = val; sub(/[^0-9.eE+-].*/, "", num)
+		unit = substr(val, length(num) + 1)
+		printf "%s = %.10g%s\n", key, num * s, unit
+		next
+	}
+	{ print }' "$1"
+}
+
+# damping c (/s) of the scene, 0 if none
+damping=$(awk '/^[ \t]*damping[ \t]*=/ { v = $0; sub(/^[^=]*=[ \t]*/, "", v); sub(/[^0-9.eE+-].*/, "", v); print v + 0; f = 1 } END { if (!f) print 0 }' "$src")
+
+# probe SCENE METHOD DT: 0 stable (completed T), 1 blew up (exit 3), else die
+probe() {
+	"$drape" run --headless --until "$until_t" --integrator "$2" --dt "$3" "$1" >"$tmp/stdout" 2>"$tmp/stderr"
+	case $? in
+	0) return 0 ;;
+	3) return 1 ;;
+	*) die "$2 at dt $3: drape failed: $(head -n 1 "$tmp/stderr")" ;;
+	esac
+}
+
+version=$("$drape" --version 2>/dev/null | head -n 1)
+commit=$(git -C "$srcdir" rev-parse --short HEAD 2>/dev/null || echo "?")
+ncpu=$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?")
+stamp=$(date -u '+%Y-%m-%d %H:%M UTC')
+echo "stability benchmark: $version (commit $commit), $stamp"
+echo "machine: $ncpu cores; load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+echo "scene $scene_name (damping c = $damping /s), stretch moduli times $factors; T = $until_t s; bisection to $rel"
+echo
+
+csv=$out/stability.csv
+echo "factor,omega_rad_s,damping_per_s,method,status,dt_stable_s,dt_unstable_s,dt_theory_s,stable_over_theory,stable_times_omega,probes,until_s" >"$csv"
+hdr='%7s %11s %-16s %-6s %12s %12s %12s %9s %8s %6s\n'
+printf "$hdr" factor omega method status 'stable dt' 'unstable dt' 'theory dt' meas/th 'dt*omega' probes
+for s in $factors; do
+	f=$tmp/s$s.scene
+	scale_scene "$src" "$s" >"$f"
+	"$drape" run --headless --until 1e-6 "$f" >"$tmp/probe" 2>&1 || die "factor $s: probe run failed: $(cat "$tmp/probe")"
+	omega=$(sed -n 's/^integrator .*omega <= \([0-9.eE+-]*\) rad\/s.*/\1/p' "$tmp/probe")
+	isnum "$omega" || die "factor $s: no omega in the run summary"
+	for m in $methods; do
+		th=$(awk -v m="$m" -v w="$omega" -v c="$damping" 'BEGIN {
+			if (m == "rk4") t = 2 * sqrt(2) / w
+			else if (m == "symplectic-euler") t = 2 / w
+			else if (m == "euler") t = c / (w * w)
+			else t = (4 * c) ^ (1 / 3) / w ^ (4 / 3)
+			printf "%.6e", t }')
+		lo=$(awk -v u="$until_t" -v n="$maxsteps" 'BEGIN { printf "%.6e", u / n }')
+		hi=$(awk -v w="$omega" 'BEGIN { printf "%.6e", 8 / w }')
+		n=0 status=ok
+		[ -t 2 ] && printf '\r  factor %s %s ...          ' "$s" "$m" >&2
+		n=$((n + 1))
+		if probe "$f" "$m" "$hi"; then
+			status=above lo=$hi hi=-
+		else
+			n=$((n + 1))
+			if ! probe "$f" "$m" "$lo"; then
+				status=below hi=$lo lo=-
+			else
+				while awk -v a="$lo" -v b="$hi" -v r="$rel" 'BEGIN { exit !(b / a > 1 + r) }'; do
+					mid=$(awk -v a="$lo" -v b="$hi" 'BEGIN { printf "%.6e", sqrt(a * b) }')
+					n=$((n + 1))
+					if probe "$f" "$m" "$mid"; then lo=$mid; else hi=$mid; fi
+				done
+			fi
+		fi
+		ratio=$(awk -v a="$lo" -v t="$th" 'BEGIN { if (a == "-") print "-"; else printf "%.4g", a / t }')
+		dw=$(awk -v a="$lo" -v w="$omega" 'BEGIN { if (a == "-") print "-"; else printf "%.4g", a * w }')
+		echo "$s,$omega,$damping,$m,$status,$lo,$hi,$th,$ratio,$dw,$n,$until_t" >>"$csv"
+		[ -t 2 ] && printf '\r%60s\r' '' >&2
+		printf "$hdr" "$s" "$omega" "$m" "$status" "$lo" "$hi" "$th" "$ratio" "$dw" "$n"
+	done
+done
+cat <<EOF
+
+stable dt: the largest step found that ran T = $until_t s without blowing up;
+  unstable dt: the smallest that blew up (status below: even dt = T / $maxsteps
+  blew up, the limit is under it; above: 8 / omega did not).
+theory dt: rk4 2 sqrt(2) / omega, symplectic-euler 2 / omega, euler c / omega^2,
+  rk2 (4 c)^(1/3) / omega^(4/3), omega the Gershgorin bound, c = $damping /s.
+meas/th: stable dt over theory dt; dt*omega: the stable dt times omega.
+dopri5 is not searched: its step is adaptive (--dt is only its first and
+  largest step) and its error control rejects the steps that would blow up.
+data: $csv
+EOF
+
+gnuplot=${GNUPLOT:-gnuplot}
+if command -v "$gnuplot" >/dev/null 2>&1; then
+	args="csvf='$csv'; stamp='$stamp'; until_t='$until_t'; scene='$scene_name'; damping='$damping'"
+	if "$gnuplot" -e "$args; outf='$out/stability.png'" "$here/stability.gp" 2>"$tmp/gp.err" &&
+		"$gnuplot" -e "$args; outf=''" "$here/stability.gp" 2>>"$tmp/gp.err"; then
+		echo "chart: $out/stability.png"
+	else
+		echo "stability.sh: gnuplot failed, no chart:" >&2
+		cat "$tmp/gp.err" >&2
+		exit 1
+	fi
+else
+	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
+	echo "  To draw $out/stability.png, install it:  sudo apt-get install -y gnuplot-nox"
+fi
+exit 0

@@ -1,0 +1,62 @@
+# Chart of bench/workprec.sh's points (workprec.csv): gnuplot -e "csvf=...;
+# outf=...; scenes=...; runs=...; stamp=...; ncpu=..." workprec.gp
+# outf = '' draws it as text on stdout (set terminal dumb) instead of a PNG.
+#
+# One panel per scene: error against the reference (max node distance, m)
+# against CPU seconds, log-log, one line per method; the runs that blew up
+# are counted in the key, not drawn.
+#
+# workprec.csv columns: 1 scene, 2 until_s, 3 omega_rad_s, 4 method, 5 param
+# (dt*omega or tolerance), 6 dt_s, 7 tolerance, 8 status, 9 runs, 10 cpu_s,
+# 11 wall_s, 12 steps, 13 force_evals, 14 error_m
+
+if (!exists("csvf")) csvf = "workprec.csv"
+if (!exists("outf")) outf = "workprec.png"
+if (!exists("scenes")) scenes = "hanging cantilever"
+if (!exists("runs")) runs = "?"
+if (!exists("stamp")) stamp = ""
+if (!exists("ncpu")) ncpu = "?"
+
+nsc = words(scenes)
+methods = "euler symplectic-euler rk2 rk4 dopri5"
+array col[5] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4", "#d62728"]
+array pt[5] = [4, 6, 8, 7, 5]
+
+# the points of one scene and method that ran: cpu error
+pts(s, m) = sprintf("< awk -F, '$1 == \"%s\" && $4 == \"%s\" && $8 == \"ok\" && $10 > 0 && $14 > 0 { print $10, $14 }' '%s'", s, m, csvf)
+cnt(s, m, st) = int(system(sprintf("awk -F, '$1 == \"%s\" && $4 == \"%s\" && $8 == \"%s\"' '%s' | wc -l", s, m, st, csvf)))
+title(s, m) = m . (m eq "dopri5" ? " (tolerance)" : "") . \
+	(cnt(s, m, "blowup") > 0 ? sprintf(": %d of %d blew up", cnt(s, m, "blowup"), \
+		cnt(s, m, "blowup") + cnt(s, m, "ok")) : "")
+until_of(s) = system(sprintf("awk -F, '$1 == \"%s\" { print $2; exit }' '%s'", s, csvf))
+
+set logscale xy
+set format x "10^{%L}"
+set format y "10^{%L}"
+set grid xtics ytics mxtics mytics
+set xlabel "CPU seconds (user + system, median)"
+set ylabel "max node distance to reference (m)"
+set key outside right top
+
+if (outf eq "") {
+	set terminal dumb size 100,32
+	set format x "%.0e"
+	set format y "%.0e"
+	set key outside right top
+	do for [s = 1:nsc] {
+		sc = word(scenes, s)
+		set title sprintf("work-precision, %s, until %s s", sc, until_of(sc))
+		plot for [i = 1:5] pts(sc, word(methods, i)) using 1:2 with linespoints title word(methods, i)
+	}
+} else {
+	set terminal pngcairo size 1100, 500 * nsc font "Sans,11"
+	set output outf
+	set multiplot layout nsc,1 title sprintf("drape work-precision (CPU: median of %s runs, %s cores, %s)", runs, ncpu, stamp) font ",13"
+	do for [s = 1:nsc] {
+		sc = word(scenes, s)
+		set title sprintf("%s, until %s s: error against RK4 at a far smaller dt, against CPU time", sc, until_of(sc))
+		plot for [i = 1:5] pts(sc, word(methods, i)) using 1:2 with linespoints \
+			lc rgb col[i] pt pt[i] ps 1.2 lw 2 title title(sc, word(methods, i))
+	}
+	unset multiplot
+}

@@ -1,0 +1,244 @@
+#!/usr/bin/env bash
+# Work-precision benchmark: error against a converged reference against CPU
+# time, for each integrator over a range of steps (and dopri5 over a range
+# of tolerances), on the hanging strip and the cantilever.
+#
+# For each scene it runs a reference (RK4 at a step far below the others',
+# BENCH_WP_REF / omega, omega the Gershgorin bound drape prints), then every
+# method at dt = f / omega for each factor f of BENCH_WP_FACTORS (euler also
+# at BENCH_WP_EULER_FACTORS: it needs far smaller steps), and dopri5 at each
+# tolerance of BENCH_WP_TOLS (the scene's `tolerance` key, on a copy of the
+# scene, its largest step BENCH_WP_DOPRI_DT). Each run goes to the same end
+# time (--until) and writes its final mesh (--final-obj); the error is the
+# largest distance between a node there and the same node of the
+# reference's final mesh. The CPU time (user + system, bash's time) is the
+# median of BENCH_RUNS runs. A run that blows up (exit status 3) is recorded
+# as such, not as a point. Data go to $BENCH_RESULTS/workprec.csv; with
+# gnuplot, the chart to workprec.png and a text chart on stdout. See
+# bench/README.md.
+#
+# Environment:
+#   BENCH_RUNS             runs per point (default 3); the CPU time is their median
+#   BENCH_WP_SCENES        scene:until pairs (default "hanging:0.02 cantilever:0.02")
+#   BENCH_WP_FACTORS       dt * omega of the fixed-step runs (default 4 2 1 0.5 0.25 0.125 0.0625)
+#   BENCH_WP_EULER_FACTORS further dt * omega for euler only (default 1/32 .. 1/256)
+#   BENCH_WP_TOLS          dopri5 tolerances (default 1e-2 .. 1e-9)
+#   BENCH_WP_DOPRI_DT      dopri5's first and largest step (default 1e-3 s)
+#   BENCH_WP_REF           dt * omega of the RK4 reference (default 1/64)
+#   BENCH_WP_MAXSTEPS      skip a fixed-step run of more steps than this (default 1e6)
+#   BENCH_WP_TARGET        error (m) for the cost-ratio table (default 1e-5)
+#   BENCH_RESULTS          output directory (default bench/results)
+#   DRAPE, BENCH_SRCDIR, GNUPLOT  the binary, the source tree, the gnuplot
+set -u
+
+here=$(cd "$(dirname "$0")" && pwd)
+srcdir=${BENCH_SRCDIR:-$(cd "$here/.." && pwd)}
+drape=${DRAPE:-$srcdir/src/drape}
+out=${BENCH_RESULTS:-$srcdir/bench/results}
+runs=${BENCH_RUNS:-3}
+scenes=${BENCH_WP_SCENES:-hanging:0.02 cantilever:0.02}
+factors=${BENCH_WP_FACTORS:-4 2 1 0.5 0.25 0.125 0.0625}
+efactors=${BENCH_WP_EULER_FACTORS:-0.03125 0.015625 0.0078125 0.00390625}
+tols=${BENCH_WP_TOLS:-1e-2 1e-3 1e-4 1e-5 1e-6 1e-7 1e-8 1e-9}
+dopri_dt=${BENCH_WP_DOPRI_DT:-1e-3}
+ref_f=${BENCH_WP_REF:-0.015625}
+maxsteps=${BENCH_WP_MAXSTEPS:-1e6}
+target=${BENCH_WP_TARGET:-1e-5}
+
+die() { echo "workprec.sh: $*" >&2; exit 2; }
+case $runs in '' | *[!0-9]* | 0) die "BENCH_RUNS must be a whole number > 0, not '$runs'" ;; esac
+isnum() { awk -v t="$1" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }'; }
+for v in $factors $efactors $tols $dopri_dt $ref_f $maxsteps $target; do
+	isnum "$v" || die "not a number > 0: '$v'"
+done
+for p in $scenes; do
+	case $p in *:*) isnum "${p#*:}" || die "bad until in '$p'" ;; *) die "BENCH_WP_SCENES: scene:until, not '$p'" ;; esac
+done
+[ -x "$drape" ] || die "no binary at $drape: build first (make), or set DRAPE"
+mkdir -p "$out" || die "cannot create $out"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/drape-wp.XXXXXX") || die "mktemp failed"
+trap 'rm -rf "$tmp"' EXIT
+trap 'exit 130' INT TERM
+
+median() { # numbers on stdin, one a line; prints "-" if none
+	sort -g | awk '{ v[NR] = $1 }
+	END {
+		if (NR == 0) { print "-"; exit }
+		if (NR % 2) m = v[(NR + 1) / 2]; else m = (v[NR / 2] + v[NR / 2 + 1]) / 2
+		printf "%.6g\n", m
+	}'
+}
+
+# largest distance between the vertices of two OBJ files, in node order
+objdist() {
+	awk '
+	FNR == 1 { f++ }
+	$1 == "v" { n[f]++; x[f, n[f]] = $2; y[f, n[f]] = $3; z[f, n[f]] = $4 }
+	END {
+		if (n[1] != n[2] || n[1] == 0) { print "-"; exit }
+		m = 0
+		for (i = 1; i <= n[1]; i++) {
+			dx = x[1, i] - x[2, i]; dy = y[1, i] - y[2, i]; dz = z[1, i] - z[2, i]
+			d = sqrt(dx * dx + dy * dy + dz * dz); if (d > m) m = d
+		}
+		printf "%.6e\n", m
+	}' "$1" "$2"
+}
+
+# the step for a factor f: until / n with n = ceil(until * omega / f) steps,
+# so that every run ends at the same time (dt * omega is f or a little less)
+stepof() {
+	awk -v f="$1" -v w="$omega" -v u="$until_t" 'BEGIN {
+		n = u * w / f; if (n > int(n)) n = int(n) + 1; else n = int(n)
+		printf "%.15e", u / n
+	}'
+}
+
+TIMEFORMAT='%3U %3S'
+# run SCENE UNTIL INTEGRATOR DT OBJ: one run; sets rc, cpu_s, steps, evals, wall
+run1() {
+	{ time "$drape" run --headless --until "$2" --integrator "$3" --dt "$4" \
+		--final-obj "$5" "$1" >"$tmp/stdout" 2>"$tmp/stderr"; } 2>"$tmp/time"
+	rc=$?
+	cpu_s=$(awk 'NF == 2 { printf "%.3f", $1 + $2 }' "$tmp/time")
+	steps=$(awk '/^steps / { print $2 }' "$tmp/stdout")
+	evals=$(awk '/^steps / { s = $3; sub(/^\(/, "", s); print s }' "$tmp/stdout")
+	wall=$(awk '/^wall time / { print $3 }' "$tmp/stdout")
+}
+
+version=$("$drape" --version 2>/dev/null | head -n 1)
+commit=$(git -C "$srcdir" rev-parse --short HEAD 2>/dev/null || echo "?")
+cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null)
+ncpu=$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?")
+stamp=$(date -u '+%Y-%m-%d %H:%M UTC')
+
+echo "work-precision benchmark: $version (commit $commit), $stamp"
+echo "machine: $ncpu cores, ${cpu:-unknown cpu}; load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+echo "CPU time: median of $runs runs per point; error: max node distance to RK4 at dt = $ref_f/omega"
+echo
+
+csv=$out/workprec.csv
+echo "scene,until_s,omega_rad_s,method,param,dt_s,tolerance,status,runs,cpu_s,wall_s,steps,force_evals,error_m" >"$csv"
+
+bad=0
+hdr='%-10s %-16s %9s %10s %8s %9s %9s %11s\n'
+printf "$hdr" scene method 'dt*omega' dt/tol status 'cpu (s)' steps 'error (m)'
+for p in $scenes; do
+	sc=${p%%:*}
+	until_t=${p#*:}
+	src=$srcdir/scenes/$sc.scene
+	[ -r "$src" ] || die "no scene $src"
+	# omega from a probe run (the Gershgorin bound; it does not depend on dt)
+	"$drape" run --headless --until 1e-6 "$src" >"$tmp/probe" 2>&1 || die "$sc: probe run failed: $(cat "$tmp/probe")"
+	omega=$(sed -n 's/^integrator .*omega <= \([0-9.eE+-]*\) rad\/s.*/\1/p' "$tmp/probe")
+	isnum "$omega" || die "$sc: no omega in the run summary"
+	ref_dt=$(stepof "$ref_f")
+	[ -t 2 ] && printf '\r  %s: reference (rk4, dt %s)          ' "$sc" "$ref_dt" >&2
+	run1 "$src" "$until_t" rk4 "$ref_dt" "$tmp/ref.obj"
+	[ $rc = 0 ] || die "$sc: the reference run failed (exit $rc): $(head -n 1 "$tmp/stderr")"
+	echo "$sc,$until_t,$omega,reference,$ref_f,$ref_dt,,ok,1,$cpu_s,$wall,$steps,$evals,0" >>"$csv"
+
+	# the list of points: method kind param
+	{
+		for m in euler symplectic-euler rk2 rk4; do
+			for f in $factors; do echo "$m dt $f"; done
+			[ $m = euler ] && for f in $efactors; do echo "$m dt $f"; done
+		done
+		for t in $tols; do echo "dopri5 tol $t"; done
+	} >"$tmp/points"
+	sed "/^[ \t]*\[simulation\]/,/^[ \t]*\[/{/^[ \t]*tolerance[ \t]*=/d}" "$src" >"$tmp/base.scene"
+	while read -r m kind par; do
+		scene=$src tol=
+		if [ $kind = dt ]; then
+			dt=$(stepof "$par")
+			if awk -v u="$until_t" -v d="$dt" -v mx="$maxsteps" 'BEGIN { exit !(u / d > mx) }'; then
+				echo "$sc,$until_t,$omega,$m,$par,$dt,,skipped,0,,,,," >>"$csv"
+				printf "$hdr" "$sc" "$m" "$par" "$(printf '%.4e' "$dt")" skipped - - -
+				continue
+			fi
+		else
+			dt=$dopri_dt tol=$par
+			scene=$tmp/tol.scene
+			sed "/^[ \t]*\[simulation\]/a tolerance = $tol" "$tmp/base.scene" >"$scene"
+		fi
+		[ -t 2 ] && printf '\r  %s: %s %s %s          ' "$sc" "$m" "$kind" "$par" >&2
+		cpus=
+		status=ok n=0
+		for r in $(seq 1 "$runs"); do
+			run1 "$scene" "$until_t" "$m" "$dt" "$tmp/run.obj"
+			case $rc in
+			0) ;;
+			3) status=blowup; break ;;
+			*)
+				status=error bad=1
+				{ echo; echo "workprec.sh: $sc $m $kind $par: drape exited $rc:"; sed 's/^/  /' "$tmp/stderr"; } >&2
+				break
+				;;
+			esac
+			n=$((n + 1))
+			cpus="$cpus$cpu_s
+"
+			walls="${walls:-}$wall
+"
+			[ $r = 1 ] && err=$(objdist "$tmp/run.obj" "$tmp/ref.obj")
+		done
+		if [ $status = ok ]; then
+			cmed=$(printf '%s' "$cpus" | median)
+			wmed=$(printf '%s' "$walls" | median)
+			echo "$sc,$until_t,$omega,$m,$par,$dt,$tol,ok,$n,$cmed,$wmed,$steps,$evals,$err" >>"$csv"
+			[ -t 2 ] && printf '\r%60s\r' '' >&2
+			printf "$hdr" "$sc" "$m" "$([ $kind = dt ] && echo "$par" || echo -)" "$([ $kind = dt ] && printf '%.4e' "$dt" || echo "tol $tol")" ok "$cmed" "$steps" "$err"
+		else
+			echo "$sc,$until_t,$omega,$m,$par,$dt,$tol,$status,0,,,$steps,," >>"$csv"
+			[ -t 2 ] && printf '\r%60s\r' '' >&2
+			printf "$hdr" "$sc" "$m" "$([ $kind = dt ] && echo "$par" || echo -)" "$([ $kind = dt ] && printf '%.4e' "$dt" || echo "tol $tol")" \
+				"$([ $status = blowup ] && echo "BLEW UP" || echo FAILED)" - "$steps" -
+		fi
+		walls=
+	done <"$tmp/points"
+	printf '%-10s reference: rk4 at dt %s s (%s/omega, omega <= %s rad/s), until %s s\n\n' "$sc" "$ref_dt" "$ref_f" "$omega" "$until_t"
+done
+
+# cost ratio: the cheapest point of each method within the target error,
+# over rk4's, per scene (all the times of one run of this script)
+echo "cheapest CPU time to an error <= $target m, and its ratio to rk4's (this run):"
+awk -F, -v tgt="$target" '
+NR > 1 && $8 == "ok" && $4 != "reference" && $14 + 0 <= tgt {
+	k = $1 SUBSEP $4
+	if (!(k in best) || $10 + 0 < best[k]) { best[k] = $10 + 0; at[k] = ($4 == "dopri5" ? "tol " $7 : "dt*omega " $5) }
+}
+NR > 1 && !($1 in seen) { seen[$1] = 1; order[++ns] = $1 }
+END {
+	split("euler symplectic-euler rk2 rk4 dopri5", ms, " ")
+	for (s = 1; s <= ns; s++) {
+		sc = order[s]; r = ((sc, "rk4") in best) ? best[sc, "rk4"] : 0
+		for (i = 1; i <= 5; i++) {
+			k = sc SUBSEP ms[i]
+			if (k in best)
+				printf "  %-10s %-16s %8.3f s at %-18s %s\n", sc, ms[i], best[k], at[k], \
+					(r > 0 ? sprintf("%.2fx rk4", best[k] / r) : "")
+			else
+				printf "  %-10s %-16s none within %s m (blew up, skipped or too coarse)\n", sc, ms[i], tgt
+		}
+	}
+}' "$csv"
+echo
+echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null) ($ncpu cores)"
+echo "data: $csv"
+
+gnuplot=${GNUPLOT:-gnuplot}
+if command -v "$gnuplot" >/dev/null 2>&1; then
+	args="csvf='$csv'; runs='$runs'; stamp='$stamp'; ncpu='$ncpu'; scenes='$(for p in $scenes; do printf '%s ' "${p%%:*}"; done)'"
+	if "$gnuplot" -e "$args; outf='$out/workprec.png'" "$here/workprec.gp" 2>"$tmp/gp.err" &&
+		"$gnuplot" -e "$args; outf=''" "$here/workprec.gp" 2>>"$tmp/gp.err"; then
+		echo "chart: $out/workprec.png"
+	else
+		echo "workprec.sh: gnuplot failed, no chart:" >&2
+		cat "$tmp/gp.err" >&2
+		bad=1
+	fi
+else
+	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
+	echo "  To draw $out/workprec.png, install it:  sudo apt-get install -y gnuplot-nox"
+fi
+exit $bad

@@ -15,18 +15,18 @@
 # Environment:
 #   BENCH_RUNS        timed runs per scene and mode (default 3)
 #   BENCH_BRUTE_RUNS  timed runs of the brute modes (default 1: they are slow)
-#   BENCH_SCENES      "scene:T ..." (default "strip:0.53 tablecloth:0.2")
-#   BENCH_EVERY       audit every Nth output frame (default 2: 25 audits/s)
+#   BENCH_ACCURACY_SCENES      "scene:T ..." (default "strip:0.53 tablecloth:0.2")
+#   BENCH_ACCURACY_EVERY       audit every Nth output frame (default 2: 25 audits/s)
 #   BENCH_RESULTS     output directory (default bench/results)
 #   DRAPE, BENCH_SRCDIR, GNUPLOT
 set -u
 prog=accuracy.sh
 . "$(cd "$(dirname "$0")" && pwd)/lib.sh"
 brute_runs=${BENCH_BRUTE_RUNS:-1}
-scenes=${BENCH_SCENES:-strip:0.53 tablecloth:0.2}
-every=${BENCH_EVERY:-2}
+scenes=${BENCH_ACCURACY_SCENES:-strip:0.53 tablecloth:0.2}
+every=${BENCH_ACCURACY_EVERY:-2}
 case $brute_runs in '' | *[!0-9]* | 0) die "BENCH_BRUTE_RUNS must be a whole number > 0" ;; esac
-case $every in '' | *[!0-9]* | 0) die "BENCH_EVERY must be a whole number > 0" ;; esac
+case $every in '' | *[!0-9]* | 0) die "BENCH_ACCURACY_EVERY must be a whole number > 0" ;; esac
 
 modes="seed-seed seed-ccd grid-seed grid-ccd brute-seed brute-ccd"
 
@@ -106,7 +106,7 @@ for st in $scenes; do
 		# the audit: frames audited (last line), pairs summed over the frames that found some
 		crc=$(cat "$tmp/$sc-$m.checkrc" 2>/dev/null || echo 9)
 		read -r frames badf maxp < <(awk -F'\t' '$2 == "scene" { print $3, $4, $5 }' "$tmp/$sc-$m.check")
-		sump=$(awk -F'\t' '$2 ~ /^t=/ { s += $4 } END { print s + 0 }' "$tmp/$sc-$m.check")
+		sump=$(awk -F'\t' '$2 ~ /^t=/ { s += $5 } END { print s + 0 }' "$tmp/$sc-$m.check")
 		ppf=-
 		[ -n "${frames:-}" ] && [ "$frames" -gt 0 ] && ppf=$(awk -v a="$sump" -v b="$frames" 'BEGIN { printf "%.4g", a / b }')
 		case $crc in 0 | 4) ;; 3) [ $status = ok ] && status=blowup ;; *) status=error; bad=1 ;; esac

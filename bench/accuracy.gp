@@ -34,6 +34,8 @@ set offsets graph 0.05, graph 0.05, graph 0.1, graph 0.1
 ok(s, c) = (strcol(1) eq word(scenes, s) && strcol(6) eq "ok") ? column(c) : NaN
 plot for [s = 1:nsc] csv skip 1 using (ok(s, 7)):(ok(s, 14)) with points pt 7 ps ps lc rgb col[s] title word(scenes, s), \
 	for [s = 1:nsc] csv skip 1 using (ok(s, 7)):(ok(s, 14)):(strcol(2)) with labels offset 0,0.8 font lf tc rgb col[s] notitle
+if (!exists("ntruth")) ntruth = 1
+if (ntruth == 0) { set label 9 "no contacts in brute-ccd's run: nothing to compare" at graph 0.5, graph 0.5 center; set xrange [0.01:1000]; set yrange [0:2] }
 set title "contacts found over brute-ccd's (ground truth, 1 = as many)"
 set ylabel "contacts / truth"
 plot for [s = 1:nsc] csv skip 1 using (ok(s, 7)):(ok(s, 11)) with points pt 7 ps ps lc rgb col[s] title word(scenes, s), \

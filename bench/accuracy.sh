@@ -129,5 +129,6 @@ frames: frames audited by drape check --every $every (over the same T); bad:
 load average at the end: $(load) ($ncpu cores)
 data: $csv
 EOF
-plot accuracy.gp "$csv" "$results/accuracy.png" "stamp='$stamp'; runs='$runs'; every='$every'" || bad=1
+ntruth=$(awk -F, 'NR > 1 && $6 == "ok" && $11 != "-"' "$csv" | wc -l)
+plot accuracy.gp "$csv" "$results/accuracy.png" "stamp='$stamp'; runs='$runs'; every='$every'; ntruth=$ntruth" || bad=1
 exit $bad

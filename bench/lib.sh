@@ -1,0 +1,126 @@
+# Shared by bench/accuracy.sh, bench/scaling.sh and bench/needs.sh (sourced,
+# not run): the paths, the scene editor, the summary parser, medians.
+#
+# Environment (see bench/README.md): DRAPE, BENCH_SRCDIR, BENCH_RESULTS,
+# BENCH_RUNS, GNUPLOT.
+
+here=$(cd "$(dirname "$0")" && pwd)
+srcdir=${BENCH_SRCDIR:-$(cd "$here/.." && pwd)}
+drape=${DRAPE:-$srcdir/src/drape}
+results=${BENCH_RESULTS:-$srcdir/bench/results}
+runs=${BENCH_RUNS:-3}
+gnuplot=${GNUPLOT:-gnuplot}
+
+die() { echo "$prog: $*" >&2; exit 2; }
+case $runs in '' | *[!0-9]* | 0) die "BENCH_RUNS must be a whole number > 0, not '$runs'" ;; esac
+[ -x "$drape" ] || die "no binary at $drape: build first (make), or set DRAPE"
+mkdir -p "$results" || die "cannot create $results"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/drape-bench.XXXXXX") || die "mktemp failed"
+trap 'rm -rf "$tmp"' EXIT
+trap 'exit 130' INT TERM
+
+version=$("$drape" --version 2>/dev/null | head -n 1)
+commit=$(git -C "$srcdir" rev-parse --short HEAD 2>/dev/null || echo "?")
+cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null)
+ncpu=$(nproc 2>/dev/null || echo "?")
+stamp=$(date -u '+%Y-%m-%d %H:%M UTC')
+load() { cut -d' ' -f1-3 /proc/loadavg 2>/dev/null; }
+
+check_seconds() { # value name
+	awk -v t="$1" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }' ||
+		die "$2 must be seconds > 0, not '$1'"
+}
+
+# edit_scene SRC 'section.key=value' ... > DST
+# Sets each key in its section (replacing the scene's line, or adding it at
+# the section's start; a missing section is added at the end). A value of
+# "-" deletes the key; 'section.=drop' drops the whole section (every one of
+# that name).
+edit_scene() {
+	local src=$1; shift
+	printf '%s\n' "$@" | awk '
+	NR == FNR {
+		i = index($0, "="); sk = substr($0, 1, i - 1); v = substr($0, i + 1)
+		j = index(sk, "."); s = substr(sk, 1, j - 1); k = substr(sk, j + 1)
+		if (k == "") { dropsec[s] = 1; next }
+		val[s, k] = v; keys[s] = keys[s] " " k; want[s] = 1
+		next
+	}
+	function emit(s,   n, a, q) {
+		n = split(keys[s], a, " ")
+		for (q = 1; q <= n; q++) if (val[s, a[q]] != "-") print a[q] " = " val[s, a[q]]
+		done[s] = 1
+	}
+	/^[ \t]*\[/ {
+		sec = $0; sub(/^[ \t]*\[/, "", sec); sub(/\].*/, "", sec)
+		drop = (sec in dropsec)
+		if (drop) next
+		print
+		if (sec in want) emit(sec)
+		next
+	}
+	drop { next }
+	{
+		line = $0; sub(/#.*/, "", line)
+		if (line ~ /=/) {
+			k = line; sub(/[ \t]*=.*/, "", k); sub(/^[ \t]*/, "", k)
+			if ((sec, k) in val) next
+		}
+		print
+	}
+	END { for (s in want) if (!(s in done)) { print ""; print "[" s "]"; emit(s) } }
+	' - "$src"
+}
+
+# summary on stdin -> "simulated wall steps dt contacts self_contacts gravity_energy"
+parse_summary() {
+	awk '
+	/^simulated / { sim = $2 }
+	/^wall time / { wall = $3 }
+	/^steps / { steps = $2 }
+	/^integrator / { for (i = 2; i <= NF; i++) if ($i == "dt") { dt = $(i + 1); break } }
+	/^energy / { for (i = 2; i <= NF; i++) if ($i == "gravity") { g = $(i + 1); gsub(/[,()]/, "", g) } }
+	/^contacts / {
+		line = $0; sub(/^contacts[ \t]*/, "", line)
+		n = split(line, part, ","); tot = 0; ob = 0
+		for (k = 1; k <= n; k++) {
+			m = split(part[k], w, " ")
+			if (m < 2) continue
+			tot += w[m]; if (w[1] == "obstacle") ob += w[m]
+		}
+		ct = tot; sc = tot - ob
+	}
+	END {
+		if (ct == "") { ct = 0; sc = 0 }
+		if (g == "") g = "-"
+		print (sim == "" ? "-" : sim), (wall == "" ? "-" : wall), (steps == "" ? "-" : steps), \
+			(dt == "" ? "-" : dt), ct, sc, g
+	}'
+}
+
+median() { # numbers on stdin, one a line, "-" skipped; prints "-" if none
+	grep -v '^-$' | sort -g | awk '{ v[NR] = $1 }
+	END {
+		if (NR == 0) { print "-"; exit }
+		if (NR % 2) m = v[(NR + 1) / 2]; else m = (v[NR / 2] + v[NR / 2 + 1]) / 2
+		printf "%.6g\n", m
+	}'
+}
+
+# plot GP CSV PNG 'var=value; ...': the PNG, then the same chart on the
+# dumb terminal to stdout
+plot() {
+	local gp=$1 csv=$2 png=$3 vars=$4
+	if ! command -v "$gnuplot" >/dev/null 2>&1; then
+		echo "gnuplot not found: no chart (sudo apt-get install -y gnuplot-nox); the figures above are the result."
+		return 0
+	fi
+	if "$gnuplot" -e "csv='$csv'; term='png'; outf='$png'; $vars" "$here/$gp" 2>"$tmp/gp.err" &&
+		"$gnuplot" -e "csv='$csv'; term='dumb'; $vars" "$here/$gp" 2>>"$tmp/gp.err"; then
+		echo "chart: $png"
+	else
+		echo "$prog: gnuplot failed:" >&2
+		cat "$tmp/gp.err" >&2
+		return 1
+	fi
+}

@@ -67,12 +67,7 @@ for r in $(seq 1 "$maxr"); do
 		for m in $modes; do
 			n=$runs; case $m in brute-*) n=$brute_runs ;; esac
 			[ "$r" -le "$n" ] || continue
-			[ -t 2 ] && printf '\r  round %d: %s %s          ' "$r" "$sc" "$m" >&2
-			"$drape" run --headless --until "$t" "$tmp/$sc-$m.scene" >"$tmp/out" 2>"$tmp/err"
-			rc=$?
-			case $rc in 0 | 3) ;; *) bad=1; { echo "$prog: $sc $m: drape run exited $rc:"; cat "$tmp/err"; } >&2 ;; esac
-			[ $rc = 3 ] && head -n 1 "$tmp/err" | sed "s|$tmp/||" >"$tmp/$sc-$m.blowup"
-			echo "$sc $m $r $rc $(parse_summary <"$tmp/out")" >>"$rawf"
+			run_once "$sc" "$m" "$t" "$r"
 		done
 	done
 done

@@ -73,6 +73,19 @@ edit_scene() {
 }
 
 # summary on stdin -> "simulated wall steps dt contacts self_contacts gravity_energy"
+# One run of $tmp/SCENE-LABEL.scene to T, appended to $rawf as
+# "SCENE LABEL ROUND STATUS summary-fields"; a blow-up (exit 3) keeps its
+# message in $tmp/SCENE-LABEL.blowup, any other failure sets bad=1.
+run_once() { # scene label until round
+	local rc
+	[ -t 2 ] && printf '\r  round %d: %s %s          ' "$4" "$1" "$2" >&2
+	"$drape" run --headless --until "$3" "$tmp/$1-$2.scene" >"$tmp/out" 2>"$tmp/err"
+	rc=$?
+	case $rc in 0 | 3) ;; *) bad=1; { echo "$prog: $1 $2: drape run exited $rc:"; cat "$tmp/err"; } >&2 ;; esac
+	[ $rc = 3 ] && head -n 1 "$tmp/err" | sed "s|$tmp/||" >"$tmp/$1-$2.blowup"
+	echo "$1 $2 $4 $rc $(parse_summary <"$tmp/out")" >>"$rawf"
+}
+
 parse_summary() {
 	awk '
 	/^simulated / { sim = $2 }

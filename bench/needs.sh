@@ -66,12 +66,7 @@ for r in $(seq 1 "$runs"); do
 	for st in $scenes; do
 		sc=${st%%:*}; t=${st#*:}
 		for v in $variants; do
-			[ -t 2 ] && printf '\r  round %d: %s %s          ' "$r" "$sc" "$v" >&2
-			"$drape" run --headless --until "$t" "$tmp/$sc-$v.scene" >"$tmp/out" 2>"$tmp/err"
-			rc=$?
-			case $rc in 0 | 3) ;; *) bad=1; { echo "$prog: $sc $v: drape run exited $rc:"; cat "$tmp/err"; } >&2 ;; esac
-			[ $rc = 3 ] && head -n 1 "$tmp/err" | sed "s|$tmp/||" >"$tmp/$sc-$v.blowup"
-			echo "$sc $v $r $rc $(parse_summary <"$tmp/out")" >>"$rawf"
+			run_once "$sc" "$v" "$t" "$r"
 		done
 	done
 done

@@ -24,4 +24,8 @@ int cmd_export(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
 void usage(FILE *f);
 
+/* After getopt_long returned '?' for command cmd: says which option was
+ * unknown or lacked its value, then the usage; returns EXIT_USAGE. */
+int cmd_option_error(const char *cmd, char **argv);
+
 #endif

@@ -25,7 +25,6 @@ cmd_replay(int argc, char **argv)
 	struct tui_result res;
 	struct drape_err err;
 	int c, rc = EXIT_OK;
-	char *end;
 
 	optind = 1;
 	opterr = 0;
@@ -34,28 +33,18 @@ cmd_replay(int argc, char **argv)
 		case 'C':
 			topt.color = false;
 			break;
-		case 'd': {
-			long d = strtol(optarg, &end, 10);
-
-			if (end == optarg || *end != '\0' || d < 1 || d > TUI_DELAY_MAX) {
+		case 'd':
+			if (tui_parse_delay(optarg, &topt.delay) != 0) {
 				fprintf(stderr, "drape replay: --delay '%s': expected tenths of a second, "
 				    "a whole number from 1 to 100\n", optarg);
 				return EXIT_USAGE;
 			}
-			topt.delay = (int)d;
 			break;
-		}
 		case 'h':
 			usage(stdout);
 			return EXIT_OK;
 		default:
-			if (optopt != 0)
-				fprintf(stderr, "drape replay: option '-%c' needs a value or is unknown\n",
-				    optopt);
-			else
-				fprintf(stderr, "drape replay: unknown option '%s'\n", argv[optind - 1]);
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("replay", argv);
 		}
 	}
 	if (optind != argc - 1) {

@@ -441,15 +441,11 @@ cmd_run(int argc, char **argv)
 		case 'C':
 			topt.color = false;
 			break;
-		case 'd': {
-			long d = strtol(optarg, &end, 10);
-
-			if (end == optarg || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
+		case 'd':
+			if (tui_parse_delay(optarg, &topt.delay) != 0)
 				return bad_option("--delay", optarg,
 				    "tenths of a second, a whole number from 1 to 100");
-			topt.delay = (int)d;
 			break;
-		}
 		case 'p':
 			topt.paused = true;
 			break;
@@ -493,13 +489,7 @@ cmd_run(int argc, char **argv)
 			usage(stdout);
 			return EXIT_OK;
 		default:
-			if (optopt != 0)
-				fprintf(stderr, "drape run: option '-%c' needs a value or is unknown\n",
-				    optopt);
-			else
-				fprintf(stderr, "drape run: unknown option '%s'\n", argv[optind - 1]);
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("run", argv);
 		}
 	}
 	if (resume != NULL) {

@@ -174,13 +174,7 @@ cmd_snapshot(int argc, char **argv)
 			usage(stdout);
 			return EXIT_OK;
 		default:
-			if (optopt != 0)
-				fprintf(stderr, "drape snapshot: option '-%c' needs a value or is unknown\n",
-				    optopt);
-			else
-				fprintf(stderr, "drape snapshot: unknown option '%s'\n", argv[optind - 1]);
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("snapshot", argv);
 		}
 	}
 	if (optind != argc - 1) {

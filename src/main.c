@@ -1,4 +1,5 @@
 /* main.c: dispatch to a subcommand. */
+#include <getopt.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -26,6 +27,17 @@ usage(FILE *f)
 	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
 	    "T and DT are times in seconds, or with a unit (ms, us); DT may be 'auto'.\n"
 	    "See drape(1) and drape-scene(5).\n", f);
+}
+
+int
+cmd_option_error(const char *cmd, char **argv)
+{
+	if (optopt != 0)
+		fprintf(stderr, "drape %s: option '-%c' needs a value or is unknown\n", cmd, optopt);
+	else
+		fprintf(stderr, "drape %s: unknown option '%s'\n", cmd, argv[optind - 1]);
+	usage(stderr);
+	return EXIT_USAGE;
 }
 
 int

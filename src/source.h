@@ -113,6 +113,9 @@ struct source_live {
 /* st must outlive src; source_live_free closes a recording and frees what
  * the source allocated. */
 void source_live(struct source *src, struct source_live *lv, struct stepper *st);
+
+/* The state a stepper holds, as both sources show it (v_note NULL). */
+void source_state_of(const struct stepper *st, struct source_state *s);
 void source_live_free(struct source_live *lv);
 
 /* A replay, its scene's network built from the recorded scene. The struct

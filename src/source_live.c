@@ -7,12 +7,9 @@
 #include "source.h"
 #include "stepper.h"
 
-static void
-live_state(void *ctx, struct source_state *s)
+void
+source_state_of(const struct stepper *st, struct source_state *s)
 {
-	struct source_live *lv = ctx;
-	const struct stepper *st = lv->st;
-
 	s->sc = st->sc;
 	s->cl = &st->cl;
 	s->x = stepper_x(st);
@@ -25,6 +22,14 @@ live_state(void *ctx, struct source_state *s)
 	s->integrator = integrator_name(st->sc->integrator);
 	stepper_energy(st, &s->energy);
 	s->v_note = NULL;
+}
+
+static void
+live_state(void *ctx, struct source_state *s)
+{
+	struct source_live *lv = ctx;
+
+	source_state_of(lv->st, s);
 }
 
 /* Closes the recording; 0, or -1 with a message. */

@@ -291,19 +291,9 @@ static void
 replay_state(void *ctx, struct source_state *s)
 {
 	struct source_replay *sr = ctx;
-	const struct stepper *st = sr->st;
 
-	s->sc = st->sc;
-	s->cl = &st->cl;
-	s->x = stepper_x(st);
-	s->v = stepper_v(st);
-	s->held = st->pr.held;
-	s->t = st->t;
-	s->t_end = st->t_end;
-	s->dt = st->dt;
-	s->step = st->step;
-	s->integrator = integrator_name(st->sc->integrator);
-	stepper_energy(st, &s->energy);
+	/* the replay's stepper holds the state of the frame shown */
+	source_state_of(sr->st, s);
 	s->v_note = sr->exact ? NULL : "v: frame differences";
 }
 

@@ -722,3 +722,15 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 	raster_free(&ui.r);
 	evlog_free(&ui.log);
 }
+
+int
+tui_parse_delay(const char *s, int *delay)
+{
+	char *end;
+	long d = strtol(s, &end, 10);
+
+	if (end == s || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
+		return -1;
+	*delay = (int)d;
+	return 0;
+}

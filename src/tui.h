@@ -34,4 +34,8 @@ struct tui_result {
 /* Runs the front end on stdin and stdout until it ends; fills *res. */
 void tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res);
 
+/* -d/--delay's value: a whole number of tenths from 1 to TUI_DELAY_MAX.
+ * Returns 0 with *delay set, or -1. */
+int tui_parse_delay(const char *s, int *delay);
+
 #endif

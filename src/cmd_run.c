@@ -171,7 +171,12 @@ summary(const struct stepper *st, double wall, const struct hash_totals *ht)
 	printf("integrator   %s, dt %.4g s (%s; omega <= %.4g rad/s)\n",
 	    integrator_name(sc->integrator), st->dt_set, st->dt_auto ? "auto" : "given",
 	    st->omega);
-	printf("steps        %ld (%ld force evaluations", st->step, st->in.nfev);
+	if (sc->integrator == INTEG_IMPLICIT_EULER)
+		printf("steps        %ld (%ld solves, %.1f CG iterations each, %ld unconverged",
+		    st->step, st->im.solves, st->im.solves > 0 ?
+		    (double)st->im.iters / (double)st->im.solves : 0.0, st->im.unconverged);
+	else
+		printf("steps        %ld (%ld force evaluations", st->step, st->in.nfev);
 	if (sc->integrator == INTEG_DOPRI5)
 		printf(", %ld steps rejected", st->in.rejected);
 	printf(")\n");

@@ -1,4 +1,5 @@
-/* integrate.c: explicit one-step methods on flat arrays. */
+/* integrate.c: explicit one-step methods on flat arrays (implicit Euler is
+ * implicit.c's). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +18,7 @@ static const struct {
 	[INTEG_RK2] = { "rk2", 2, 0, 2 },
 	/* Its 5th-order solution is neutrally stable only for h*omega < 1. */
 	[INTEG_DOPRI5] = { "dopri5", 5, 1.0, 7 },
+	[INTEG_IMPLICIT_EULER] = { "implicit-euler", 1, INFINITY, 0 },
 };
 
 const char *
@@ -42,6 +44,12 @@ int
 integrator_order(enum integrator_kind kind)
 {
 	return methods[kind].order;
+}
+
+double
+integrator_default_tolerance(enum integrator_kind kind)
+{
+	return kind == INTEG_IMPLICIT_EULER ? 1e-3 : 1e-6;
 }
 
 double
@@ -224,6 +232,7 @@ integrator_step(struct integrator *in, rhs_fn f, void *ctx, double t, const doub
 		break;
 	case INTEG_DOPRI5:
 		return step_dopri5(in, f, ctx, t, y, y_out, dt, dt_next);
+	case INTEG_IMPLICIT_EULER:
 	case INTEG_COUNT:
 		return -1;
 	}

@@ -14,6 +14,9 @@ enum integrator_kind {
 	INTEG_SYMPLECTIC_EULER,	/* v then x (semi-implicit Euler) */
 	INTEG_RK2,		/* explicit midpoint */
 	INTEG_DOPRI5,		/* Dormand-Prince 5(4), adaptive */
+	/* Linearly implicit Euler: named and numbered here, but stepped by
+	 * implicit.c, which needs the forces' Jacobian and not only f. */
+	INTEG_IMPLICIT_EULER,
 	INTEG_COUNT
 };
 
@@ -34,8 +37,13 @@ int integrator_from_name(const char *name, enum integrator_kind *kind);
 
 /* Order of accuracy, and the largest h*omega for which an undamped
  * oscillator of angular frequency omega stays bounded (0 for methods that
- * grow for any step: explicit Euler and explicit midpoint). */
+ * grow for any step: explicit Euler and explicit midpoint; infinite for
+ * implicit Euler). */
 int integrator_order(enum integrator_kind kind);
+/* The tolerance a scene that sets none gets: DOPRI5's local error (1e-6),
+ * implicit Euler's CG residual relative to its right-hand side (1e-3);
+ * the others take none. */
+double integrator_default_tolerance(enum integrator_kind kind);
 double integrator_imag_limit(enum integrator_kind kind);
 
 int integrator_init(struct integrator *in, enum integrator_kind kind, size_t n, double tol);
@@ -44,7 +52,8 @@ void integrator_free(struct integrator *in);
 /*
  * Sets y_out to y(t + *dt). DOPRI5 may shrink *dt until the local error is
  * within tolerance; every method sets *dt_next to the step it proposes next.
- * Returns 0, or -1 if DOPRI5's step fell below what t can resolve.
+ * Returns 0, or -1 if DOPRI5's step fell below what t can resolve (or for
+ * INTEG_IMPLICIT_EULER, which this cannot step).
  */
 int integrator_step(struct integrator *in, rhs_fn f, void *ctx, double t, const double *y,
     double *y_out, double *dt, double *dt_next);

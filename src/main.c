@@ -24,7 +24,7 @@ usage(FILE *f)
 	    "                 [--perspective] SCENE|FILE.drr\n"
 	    "       drape ccd [--method seed|ccd] [--inside angle|crossing] [--kind vf|ee] FILE.csv...\n"
 	    "\n"
-	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5.\n"
+	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5, implicit-euler.\n"
 	    "T and DT are times in seconds, or with a unit (ms, us); DT may be 'auto'.\n"
 	    "See drape(1) and drape-scene(5).\n", f);
 }

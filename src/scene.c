@@ -772,7 +772,7 @@ set_defaults(struct scene *sc)
 {
 	sc->dt = 0;
 	sc->integrator = INTEG_RK4;
-	sc->tolerance = 1e-6;
+	sc->tolerance = 0;	/* the integrator's default */
 	sc->gravity[1] = -9.80665;
 	sc->output_rate = 50;
 	sc->warp_axis[0] = 1;

@@ -94,7 +94,7 @@ struct scene {
 	double duration;
 	double dt;		/* 0 when auto */
 	enum integrator_kind integrator;
-	double tolerance;
+	double tolerance;	/* 0 when not given: the integrator's default */
 	double gravity[3];
 	double output_rate;
 

@@ -25,7 +25,8 @@ rhs(void *ctx, double t, const double *y, double *dy)
 }
 
 double
-stepper_auto_dt(enum integrator_kind kind, double omega, double damping, double spring_damping)
+stepper_auto_dt(enum integrator_kind kind, double omega, double damping, double spring_damping,
+    double crossing)
 {
 	/* The fastest mode's eigenvalue is at most omega in the imaginary
 	 * direction plus the damping rates on the real axis. Take half the
@@ -35,6 +36,11 @@ stepper_auto_dt(enum integrator_kind kind, double omega, double damping, double 
 	double lam = omega + damping + spring_damping * omega * omega;
 	double limit = kind == INTEG_RK4 ? integrator_imag_limit(kind) : 2;
 
+	/* Implicit Euler is stable at any step: what bounds it is that a
+	 * node should move no more than half a spacing in one, so that the
+	 * contacts of a step stay few and local. */
+	if (kind == INTEG_IMPLICIT_EULER)
+		return 0.5 * crossing;
 	return 0.5 * limit / lam;
 }
 
@@ -42,7 +48,7 @@ int
 stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 {
 	size_t n3;
-	double extent, vscale, mass = 0;
+	double extent, vscale, mass = 0, tol;
 	int p;
 
 	memset(st, 0, sizeof *st);
@@ -54,7 +60,10 @@ stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 		goto fail;
 	cloth_clamp_hinges(&st->cl, st->pr.held);
 	n3 = 3 * (size_t)st->cl.n;
-	if (integrator_init(&st->in, sc->integrator, 2 * n3, sc->tolerance) != 0 ||
+	tol = sc->tolerance > 0 ? sc->tolerance : integrator_default_tolerance(sc->integrator);
+	if (integrator_init(&st->in, sc->integrator, 2 * n3, tol) != 0 ||
+	    (sc->integrator == INTEG_IMPLICIT_EULER &&
+	    implicit_init(&st->im, &st->fo, st->pr.held, tol) != 0) ||
 	    (st->y = malloc(2 * n3 * sizeof *st->y)) == NULL ||
 	    (st->y_next = malloc(2 * n3 * sizeof *st->y_next)) == NULL) {
 		err_set(err, "%s: out of memory", sc->path);
@@ -67,15 +76,6 @@ stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 
 	st->t_end = sc->duration;
 	st->omega = cloth_omega_bound(&st->cl);
-	st->dt_auto = sc->dt == 0;
-	st->dt_set = st->dt_auto ? stepper_auto_dt(sc->integrator, st->omega, sc->mat.damping,
-	    sc->mat.spring_damping) : sc->dt;
-	st->dt = st->dt_set;
-	if (!(st->dt > 0) || !isfinite(st->dt)) {
-		err_set(err, "%s: cannot choose a time step (the stiffness bound is %g rad/s); "
-		    "set dt in [simulation]", sc->path, st->omega);
-		goto fail;
-	}
 
 	/* Speeds a run can reach without blowing up: falling over the cloth's
 	 * size, prescribed motion, loads acting all run long; 1000 times that
@@ -87,6 +87,16 @@ stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 	    v3_len(v3_load(sc->velocity)) + prescribed_max_speed(&st->pr) +
 	    forces_max_load(&st->fo) * (double)st->cl.n / mass * sc->duration;
 	st->v_limit = 1000 * vscale;
+
+	st->dt_auto = sc->dt == 0;
+	st->dt_set = st->dt_auto ? stepper_auto_dt(sc->integrator, st->omega, sc->mat.damping,
+	    sc->mat.spring_damping, st->cl.h / vscale) : sc->dt;
+	st->dt = st->dt_set;
+	if (!(st->dt > 0) || !isfinite(st->dt)) {
+		err_set(err, "%s: cannot choose a time step (the stiffness bound is %g rad/s); "
+		    "set dt in [simulation]", sc->path, st->omega);
+		goto fail;
+	}
 	if (collide_init(&st->col, sc, &st->cl, st->pr.held, st->dt_set, vscale, err) != 0)
 		goto fail;
 	return 0;
@@ -100,6 +110,7 @@ stepper_free(struct stepper *st)
 {
 	collide_free(&st->col);
 	integrator_free(&st->in);
+	implicit_free(&st->im);
 	forces_free(&st->fo);
 	prescribed_free(&st->pr);
 	cloth_free(&st->cl);
@@ -150,6 +161,37 @@ blown_up(const struct stepper *st, struct blowup *bl, int bad)
 	return 1;
 }
 
+/* Implicit Euler: the nodes within rest distance of an analytic obstacle
+ * are constrained along its normal (implicit.h says why). The distance is
+ * the cloth's thickness, or the fall of two steps under gravity if that is
+ * more: a node put back at step k's clearance rests about that high. It
+ * comes from the state alone, so that a resumed run steps the same. */
+static void
+constrain_resting(struct stepper *st, double h)
+{
+	const struct scene *sc = st->sc;
+	double rest = fmax(sc->mat.thickness, 2 * v3_len(v3_load(sc->gravity)) * h * h);
+	size_t o;
+	int p;
+
+	for (o = 0; o < sc->nobstacles; o++) {
+		const struct obstacle *ob = &sc->obstacles[o];
+
+		if (ob->kind == OBSTACLE_MESH)
+			continue;
+		for (p = 0; p < st->cl.n; p++) {
+			vec3 n;
+			double nn[3];
+
+			if (st->pr.held[p] ||
+			    obstacle_distance(ob, v3_load(st->y + 3 * p), NULL, &n) >= rest)
+				continue;
+			v3_store(nn, n);
+			implicit_constrain(&st->im, p, nn);
+		}
+	}
+}
+
 int
 stepper_step(struct stepper *st, struct blowup *bl)
 {
@@ -164,7 +206,11 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		last = 1;
 	}
 	/* 1. integrate: consistent state k -> predicted state k+1 */
-	if (integrator_step(&st->in, rhs, st, st->t, st->y, st->y_next, &h, &h_next) != 0) {
+	if (st->in.kind == INTEG_IMPLICIT_EULER) {
+		constrain_resting(st, h);
+		implicit_step(&st->im, st->t, h, st->y, st->y_next);
+		h_next = h;
+	} else if (integrator_step(&st->in, rhs, st, st->t, st->y, st->y_next, &h, &h_next) != 0) {
 		bl->step = st->step;
 		bl->t = st->t;
 		bl->node = bl->i = bl->j = -1;

@@ -13,6 +13,7 @@
 #include "collide.h"
 #include "err.h"
 #include "forces.h"
+#include "implicit.h"
 #include "integrate.h"
 #include "prescribed.h"
 #include "scene.h"
@@ -30,7 +31,8 @@ struct stepper {
 	struct cloth cl;
 	struct prescribed pr;
 	struct forces fo;
-	struct integrator in;
+	struct integrator in;	/* the explicit methods */
+	struct implicit im;	/* implicit Euler */
 	struct collide col;
 	double *y, *y_next;	/* positions (3n) then velocities (3n) */
 	double t, t_end;
@@ -59,8 +61,9 @@ void stepper_energy(const struct stepper *st, struct energy *e);
 /* FNV-1a over the state's bytes and the time: equal hashes, equal runs. */
 uint64_t stepper_hash(const struct stepper *st);
 
-/* The step `dt = auto` picks for a scene (drape-scene(5) says how). */
+/* The step `dt = auto` picks for a scene (drape-scene(5) says how);
+ * crossing is the time to cross a spacing at the fastest expected speed. */
 double stepper_auto_dt(enum integrator_kind kind, double omega, double damping,
-    double spring_damping);
+    double spring_damping, double crossing);
 
 #endif

@@ -3,6 +3,7 @@
  * determinism. */
 #include <math.h>
 
+#include "jacobian.h"
 #include "testutil.h"
 #include "vec3.h"
 
@@ -128,18 +129,19 @@ spring_frequency(void **state)
 }
 
 static double
-observed_order(const char *integrator, const char *dt1, const char *dt2, const char *dt4)
+observed_order_with(const char *integrator, const char *extra, const char *dt1,
+    const char *dt2, const char *dt4)
 {
 	char text[2048];
 	double *a, *b, *c, p;
 	size_t n = 6 * 16;
 
-	/* SWING's text has the duration, then dt, then the integrator. */
-	snprintf(text, sizeof text, SWING("%s", "%s", "0.1"), dt1, integrator);
+	/* SWINGX's text has the duration, then dt, then the integrator. */
+	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1", "%s"), dt1, integrator, extra);
 	a = positions_after(text);
-	snprintf(text, sizeof text, SWING("%s", "%s", "0.1"), dt2, integrator);
+	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1", "%s"), dt2, integrator, extra);
 	b = positions_after(text);
-	snprintf(text, sizeof text, SWING("%s", "%s", "0.1"), dt4, integrator);
+	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1", "%s"), dt4, integrator, extra);
 	c = positions_after(text);
 	p = log2(distance(a, b, n) / distance(b, c, n));
 	print_message("%-6s observed order %.3f (differences %.3e, %.3e)\n", integrator, p,
@@ -148,6 +150,12 @@ observed_order(const char *integrator, const char *dt1, const char *dt2, const c
 	free(b);
 	free(c);
 	return p;
+}
+
+static double
+observed_order(const char *integrator, const char *dt1, const char *dt2, const char *dt4)
+{
+	return observed_order_with(integrator, "", dt1, dt2, dt4);
 }
 
 static void
@@ -161,6 +169,10 @@ convergence_orders(void **state)
 	assert_double_equal(observed_order("euler", "0.1 ms", "0.05 ms", "0.025 ms"), 1, 0.3);
 	assert_double_equal(observed_order("symplectic-euler", "0.1 ms", "0.05 ms", "0.025 ms"),
 	    1, 0.3);
+	/* with a tight CG, so that the solve's error does not hide the
+	 * method's */
+	assert_double_equal(observed_order_with("implicit-euler", "tolerance = 1e-12\n",
+	    "0.1 ms", "0.05 ms", "0.025 ms"), 1, 0.3);
 }
 
 /* The worst |E(t) - E(0)| over a run. RK4's energy error has an O(h^4)
@@ -302,6 +314,234 @@ same_scene_same_hash(void **state)
 	scene_free(&sc);
 }
 
+/* Backward Euler's free fall, exactly: v_n = v0 + g t, and each position
+ * step takes the new velocity, so x_n = x0 + v0 t + g t^2/2 + g h t/2. */
+static void
+free_fall_implicit(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	double worst = 0, h;
+	int p;
+
+	(void)state;
+	load_shipped_with(&sc, SCENE_DIR "free-fall.scene", "nodes = 25 25", "nodes = 6 6");
+	sc.integrator = INTEG_IMPLICIT_EULER;
+	sc.dt = sc.duration / 250;	/* whole steps: the formula is for equal ones */
+	sc.tolerance = 1e-12;		/* the method's answer, not the solve's */
+	init_stepper(&st, &sc);
+	h = st.dt_set;
+	run_to_end(&st);
+	assert_true(st.step > 100);
+	assert_double_equal(st.t, sc.duration, 0);
+	for (p = 0; p < st.cl.n; p++) {
+		vec3 x0 = v3_load(st.cl.x0 + 3 * p), v0 = v3_load(sc.velocity), g = v3_load(sc.gravity);
+		vec3 exact = v3_madd(v3_madd(x0, v0, st.t), g, st.t * st.t / 2 + h * st.t / 2);
+		double rel = v3_len(v3_sub(v3_load(stepper_x(&st) + 3 * p), exact)) / v3_len(exact);
+
+		worst = fmax(worst, rel);
+	}
+	print_message("implicit free fall: %ld steps of %.3g s, worst relative error %.3e\n",
+	    st.step, h, worst);
+	assert_true(worst < 1e-10);
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+/* f = m a at positions x, velocities v (no gravity: it cancels in a
+ * difference anyway). */
+static void
+force_at(const struct stepper *st, const double *x, const double *v, double *f)
+{
+	int i;
+
+	forces_accel(&st->fo, 0, x, v, f);
+	for (i = 0; i < 3 * st->cl.n; i++)
+		f[i] *= st->cl.mass[i / 3];
+}
+
+/* The largest |K p - (-df/dx p)| over the largest |K p|, by central
+ * differences along p at positions x. */
+static double
+jacobian_error(struct stepper *st, struct jacobian *jc, const double *x, const double *p)
+{
+	size_t n3 = 3 * (size_t)st->cl.n, i;
+	double *kp = calloc(n3, sizeof *kp), *xp = calloc(n3, sizeof *xp);
+	double *fp = calloc(n3, sizeof *fp), *fm = calloc(n3, sizeof *fm), *v = calloc(n3, sizeof *v);
+	double eps = 1e-7, worst = 0, scale = 0;
+
+	assert_true(kp && xp && fp && fm && v);
+	jacobian_eval(jc, x);
+	jacobian_mul(jc, 1, 0, p, kp);
+	for (i = 0; i < n3; i++)
+		xp[i] = x[i] + eps * p[i];
+	force_at(st, xp, v, fp);
+	for (i = 0; i < n3; i++)
+		xp[i] = x[i] - eps * p[i];
+	force_at(st, xp, v, fm);
+	for (i = 0; i < n3; i++) {
+		worst = fmax(worst, fabs(kp[i] + (fp[i] - fm[i]) / (2 * eps)));
+		scale = fmax(scale, fabs(kp[i]));
+	}
+	free(kp);
+	free(xp);
+	free(fp);
+	free(fm);
+	free(v);
+	return worst / scale;
+}
+
+/* jacobian.c against forces.c by finite differences, where its stand-in
+ * for the stiffness is exact: at rest, and stretched flat (springs in
+ * tension, corners square, yarn lines straight); and elsewhere symmetric
+ * and positive semidefinite, which CG needs. */
+static void
+jacobian_matches_forces(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	struct jacobian jc;
+	double *x, *p, *q, *kp, *kq, e_rest, e_stretched, pkq = 0, qkp = 0, pkp = 0;
+	size_t n3, i;
+	unsigned seed = 12345;
+
+	(void)state;
+	parse_text(&sc, SWING("rk4", "1 ms", "0.01"));
+	init_stepper(&st, &sc);
+	assert_int_equal(jacobian_init(&jc, &st.fo), 0);
+	n3 = 3 * (size_t)st.cl.n;
+	x = malloc(n3 * sizeof *x);
+	p = malloc(n3 * sizeof *p);
+	q = malloc(n3 * sizeof *q);
+	kp = malloc(n3 * sizeof *kp);
+	kq = malloc(n3 * sizeof *kq);
+	assert_true(x && p && q && kp && kq);
+	for (i = 0; i < n3; i++) {
+		seed = seed * 1103515245u + 12345u;
+		p[i] = (double)(seed >> 8) / (1u << 24) - 0.5;
+		seed = seed * 1103515245u + 12345u;
+		q[i] = (double)(seed >> 8) / (1u << 24) - 0.5;
+	}
+	e_rest = jacobian_error(&st, &jc, st.cl.x0, p);
+	for (i = 0; i < n3; i++)
+		x[i] = 1.02 * st.cl.x0[i];
+	e_stretched = jacobian_error(&st, &jc, x, p);
+	print_message("jacobian: relative error %.2e at rest, %.2e stretched 2 %%\n", e_rest,
+	    e_stretched);
+	assert_true(e_rest < 1e-6);
+	assert_true(e_stretched < 1e-6);
+
+	/* crumpled: every node moved by up to a third of a spacing */
+	for (i = 0; i < n3; i++)
+		x[i] = st.cl.x0[i] + st.cl.h * 0.66 * q[i] * p[i] * 4;
+	jacobian_eval(&jc, x);
+	jacobian_mul(&jc, 1, 0, p, kp);
+	jacobian_mul(&jc, 1, 0, q, kq);
+	for (i = 0; i < n3; i++) {
+		pkq += p[i] * kq[i];
+		qkp += q[i] * kp[i];
+		pkp += p[i] * kp[i];
+	}
+	assert_double_equal(pkq, qkp, 1e-9 * fabs(pkp));
+	assert_true(pkp > 0);
+
+	/* the dashpots: C = -df/dv */
+	st.fo.spring_damping = 1e-3;
+	{
+		double *fp = calloc(n3, sizeof *fp), *fm = calloc(n3, sizeof *fm);
+		double *v = calloc(n3, sizeof *v), *cp = calloc(n3, sizeof *cp), worst = 0, scale = 0;
+
+		assert_true(fp && fm && v && cp);
+		jacobian_eval(&jc, x);
+		jacobian_mul(&jc, 0, 1, p, cp);
+		for (i = 0; i < n3; i++)
+			v[i] = 1e-3 * p[i];
+		force_at(&st, x, v, fp);
+		for (i = 0; i < n3; i++)
+			v[i] = -1e-3 * p[i];
+		force_at(&st, x, v, fm);
+		for (i = 0; i < n3; i++) {
+			worst = fmax(worst, fabs(cp[i] + (fp[i] - fm[i]) / 2e-3));
+			scale = fmax(scale, fabs(cp[i]));
+		}
+		print_message("jacobian: dashpots' relative error %.2e\n", worst / scale);
+		assert_true(worst < 1e-9 * scale);
+		free(fp);
+		free(fm);
+		free(v);
+		free(cp);
+	}
+	free(x);
+	free(p);
+	free(q);
+	free(kp);
+	free(kq);
+	jacobian_free(&jc);
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+/* Where RK4 blows up (h*omega far past its 2.83), implicit Euler steps on,
+ * and its energy only falls. */
+static void
+implicit_stable_past_explicit_limit(void **state)
+{
+	struct scene sc;
+	struct stepper st;
+	struct blowup bl;
+	struct energy e;
+	double e0, worst = -INFINITY;
+	int r = 0;
+
+	(void)state;
+	parse_text(&sc, SWING("rk4", "20 ms", "2"));
+	init_stepper(&st, &sc);
+	print_message("h*omega = %.1f\n", st.dt_set * st.omega);
+	assert_true(st.dt_set * st.omega > 10);
+	while (!stepper_done(&st) && (r = stepper_step(&st, &bl)) == 0)
+		;
+	assert_int_equal(r, 1);		/* the contrast: RK4 blows up */
+	stepper_free(&st);
+
+	sc.integrator = INTEG_IMPLICIT_EULER;
+	init_stepper(&st, &sc);
+	stepper_energy(&st, &e);
+	e0 = energy_total(&e);
+	while (!stepper_done(&st)) {
+		assert_int_equal(stepper_step(&st, &bl), 0);
+		stepper_energy(&st, &e);
+		worst = fmax(worst, energy_total(&e) - e0);
+	}
+	print_message("implicit Euler at 20 ms: %ld steps, energy at most %.3e J over its start, "
+	    "%.3e J at the end\n", st.step, worst, energy_total(&e) - e0);
+	assert_true(worst <= 1e-9 * fabs(e0));
+	assert_true(energy_total(&e) < e0);
+	assert_true(st.im.unconverged == 0);
+	stepper_free(&st);
+	scene_free(&sc);
+}
+
+static void
+same_scene_same_hash_implicit(void **state)
+{
+	struct scene sc;
+	struct stepper a, b;
+
+	(void)state;
+	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
+	sc.integrator = INTEG_IMPLICIT_EULER;
+	sc.duration = 0.15;		/* on the box by then */
+	init_stepper(&a, &sc);
+	init_stepper(&b, &sc);
+	run_to_end(&a);
+	run_to_end(&b);
+	assert_true(a.col.total.contacts[CONTACT_OBSTACLE] > 0);
+	assert_true(stepper_hash(&a) == stepper_hash(&b));
+	stepper_free(&a);
+	stepper_free(&b);
+	scene_free(&sc);
+}
+
 int
 main(void)
 {
@@ -313,6 +553,10 @@ main(void)
 		cmocka_unit_test(symplectic_energy_bounded),
 		cmocka_unit_test(dopri5_tolerance),
 		cmocka_unit_test(same_scene_same_hash),
+		cmocka_unit_test(free_fall_implicit),
+		cmocka_unit_test(jacobian_matches_forces),
+		cmocka_unit_test(implicit_stable_past_explicit_limit),
+		cmocka_unit_test(same_scene_same_hash_implicit),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

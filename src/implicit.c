@@ -1,0 +1,202 @@
+/* implicit.c: the linearly implicit Euler step (see implicit.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "implicit.h"
+#include "vec3.h"
+
+int
+implicit_init(struct implicit *im, const struct forces *fo, const unsigned char *held,
+    double tol)
+{
+	size_t n3 = 3 * (size_t)fo->cl->n;
+	double **v[] = { &im->a, &im->b, &im->dv, &im->r, &im->z, &im->p, &im->q, &im->diag };
+	size_t i;
+
+	memset(im, 0, sizeof *im);
+	im->fo = fo;
+	im->held = held;
+	im->tol = tol;
+	/* CG needs at most n3 iterations in exact arithmetic; a stiff, badly
+	 * scaled system may need its fill of them */
+	im->max_iter = n3 < 1000 ? (int)n3 : 1000;
+	if (jacobian_init(&im->jc, fo) != 0)
+		return -1;
+	for (i = 0; i < sizeof v / sizeof v[0]; i++)
+		if ((*v[i] = malloc(n3 * sizeof(double))) == NULL)
+			goto oom;
+	if ((im->cdir = malloc(3 * n3 * sizeof *im->cdir)) == NULL ||
+	    (im->ncon = calloc((size_t)fo->cl->n, 1)) == NULL)
+		goto oom;
+	return 0;
+oom:
+	implicit_free(im);
+	return -1;
+}
+
+void
+implicit_free(struct implicit *im)
+{
+	jacobian_free(&im->jc);
+	free(im->a);
+	free(im->b);
+	free(im->dv);
+	free(im->r);
+	free(im->z);
+	free(im->p);
+	free(im->q);
+	free(im->diag);
+	free(im->cdir);
+	free(im->ncon);
+	memset(im, 0, sizeof *im);
+}
+
+void
+implicit_constrain(struct implicit *im, int p, const double n[3])
+{
+	vec3 d = v3_load(n);
+	double len;
+	int k;
+
+	if (im->ncon[p] >= 3)
+		return;
+	for (k = 0; k < im->ncon[p]; k++) {	/* Gram-Schmidt */
+		vec3 e = v3_load(im->cdir + 9 * p + 3 * k);
+
+		d = v3_madd(d, e, -v3_dot(d, e));
+	}
+	if ((len = v3_len(d)) < 0.1)
+		return;		/* (nearly) one already constrained */
+	v3_store(im->cdir + 9 * p + 3 * im->ncon[p]++, v3_scale(d, 1 / len));
+}
+
+/* The filter: a held node's components, and a constrained node's along
+ * its constrained directions, take no part in the solve. */
+static void
+filter(const struct implicit *im, double *w)
+{
+	int p, k, n = im->fo->cl->n;
+
+	for (p = 0; p < n; p++) {
+		if (im->held != NULL && im->held[p]) {
+			w[3 * p] = w[3 * p + 1] = w[3 * p + 2] = 0;
+			continue;
+		}
+		for (k = 0; k < im->ncon[p]; k++) {
+			vec3 e = v3_load(im->cdir + 9 * p + 3 * k);
+
+			v3_store(w + 3 * p, v3_madd(v3_load(w + 3 * p), e, -v3_dot(v3_load(w + 3 * p), e)));
+		}
+	}
+}
+
+/* Drops the constraints that the forces b pull the node away from: the
+ * node leaves the obstacle. */
+static void
+release(struct implicit *im, const double *b)
+{
+	int p, k, n = im->fo->cl->n;
+
+	for (p = 0; p < n; p++)
+		for (k = 0; k < im->ncon[p]; k++) {
+			double *e = im->cdir + 9 * p + 3 * k;
+
+			if (v3_dot(v3_load(e), v3_load(b + 3 * p)) > 0) {
+				memmove(e, e + 3, (size_t)(im->ncon[p] - k - 1) * 3 * sizeof *e);
+				im->ncon[p]--;
+				k--;
+			}
+		}
+}
+
+/* out = (M (1 + h damping) + h C + h^2 K) w */
+static void
+system_mul(const struct implicit *im, double h, const double *w, double *out)
+{
+	const struct cloth *cl = im->fo->cl;
+	double md = 1 + h * im->fo->damping;
+	size_t i, n3 = 3 * (size_t)cl->n;
+
+	jacobian_mul(&im->jc, h * h, h, w, out);
+	for (i = 0; i < n3; i++)
+		out[i] += md * cl->mass[i / 3] * w[i];
+	filter(im, out);
+}
+
+static double
+dot(const double *a, const double *b, size_t n)
+{
+	double s = 0;
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		s += a[i] * b[i];
+	return s;
+}
+
+void
+implicit_step(struct implicit *im, double t, double h, const double *y, double *y_out)
+{
+	const struct cloth *cl = im->fo->cl;
+	size_t i, n3 = 3 * (size_t)cl->n;
+	const double *x = y, *v = y + n3;
+	double md = 1 + h * im->fo->damping, bnorm2, rz, stop2;
+	int it;
+
+	/* b = h (f - h K v) */
+	forces_accel(im->fo, t, x, v, im->a);
+	jacobian_eval(&im->jc, x);
+	jacobian_mul(&im->jc, 1, 0, v, im->q);
+	for (i = 0; i < n3; i++)
+		im->b[i] = h * (cl->mass[i / 3] * im->a[i] - h * im->q[i]);
+	release(im, im->b);
+	filter(im, im->b);
+
+	memset(im->diag, 0, n3 * sizeof *im->diag);
+	jacobian_diag(&im->jc, h * h, h, im->diag);
+	for (i = 0; i < n3; i++)
+		im->diag[i] = 1 / (im->diag[i] + md * cl->mass[i / 3]);
+
+	/* preconditioned CG from dv = 0 */
+	memset(im->dv, 0, n3 * sizeof *im->dv);
+	memcpy(im->r, im->b, n3 * sizeof *im->r);
+	bnorm2 = dot(im->b, im->b, n3);
+	stop2 = im->tol * im->tol * bnorm2;
+	for (i = 0; i < n3; i++)
+		im->z[i] = im->diag[i] * im->r[i];
+	filter(im, im->z);	/* a diagonal scaling can turn r off the constraints */
+	memcpy(im->p, im->z, n3 * sizeof *im->p);
+	rz = dot(im->r, im->z, n3);
+	for (it = 0; it < im->max_iter && dot(im->r, im->r, n3) > stop2; it++) {
+		double pq, alpha, rz_new, beta;
+
+		system_mul(im, h, im->p, im->q);
+		pq = dot(im->p, im->q, n3);
+		if (!(pq > 0))
+			break;	/* p is 0 (solved) or the system lost definiteness */
+		alpha = rz / pq;
+		for (i = 0; i < n3; i++) {
+			im->dv[i] += alpha * im->p[i];
+			im->r[i] -= alpha * im->q[i];
+			im->z[i] = im->diag[i] * im->r[i];
+		}
+		filter(im, im->z);
+		rz_new = dot(im->r, im->z, n3);
+		beta = rz_new / rz;
+		rz = rz_new;
+		for (i = 0; i < n3; i++)
+			im->p[i] = im->z[i] + beta * im->p[i];
+	}
+	im->solves++;
+	im->iters += it;
+	im->last_iters = it;
+	if (it == im->max_iter && dot(im->r, im->r, n3) > stop2)
+		im->unconverged++;
+
+	memset(im->ncon, 0, (size_t)cl->n);
+	for (i = 0; i < n3; i++) {
+		y_out[n3 + i] = v[i] + im->dv[i];
+		y_out[i] = x[i] + h * y_out[n3 + i];
+	}
+}

@@ -1,0 +1,194 @@
+/* jacobian.c: forces.c's elements linearised (see jacobian.h). Each
+ * element's formulas follow its force in forces.c. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "jacobian.h"
+#include "vec3.h"
+
+int
+jacobian_init(struct jacobian *jc, const struct forces *fo)
+{
+	const struct cloth *cl = fo->cl;
+
+	memset(jc, 0, sizeof *jc);
+	jc->fo = fo;
+	if ((jc->spring = malloc((cl->nsprings + 1) * 5 * sizeof *jc->spring)) == NULL ||
+	    (jc->corner = malloc((cl->ncorners + 1) * 6 * sizeof *jc->corner)) == NULL ||
+	    (jc->hinge = malloc((cl->nhinges + 1) * 10 * sizeof *jc->hinge)) == NULL) {
+		jacobian_free(jc);
+		return -1;
+	}
+	return 0;
+}
+
+void
+jacobian_free(struct jacobian *jc)
+{
+	free(jc->spring);
+	free(jc->corner);
+	free(jc->hinge);
+	memset(jc, 0, sizeof *jc);
+}
+
+void
+jacobian_eval(struct jacobian *jc, const double *x)
+{
+	const struct cloth *cl = jc->fo->cl;
+	double rest2 = cl->h * cl->h;
+	size_t s;
+
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
+		double len = v3_len(d), *e = jc->spring + 5 * s;
+
+		if (len == 0) {		/* no direction: forces.c gives no force either */
+			memset(e, 0, 5 * sizeof *e);
+			continue;
+		}
+		v3_store(e, v3_scale(d, 1 / len));
+		e[3] = sp->k;
+		e[4] = len > sp->rest ? sp->k * (1 - sp->rest / len) : 0;
+	}
+	for (s = 0; s < cl->ncorners; s++) {
+		const struct corner *co = &cl->corners[s];
+		vec3 xc = v3_load(x + 3 * co->c);
+		vec3 e1 = v3_sub(v3_load(x + 3 * co->a), xc), e2 = v3_sub(v3_load(x + 3 * co->b), xc);
+		double l1s = v3_dot(e1, e1), l2s = v3_dot(e2, e2), q, inv12, c, *e = jc->corner + 6 * s;
+
+		if (l1s == 0 || l2s == 0) {
+			memset(e, 0, 6 * sizeof *e);
+			continue;
+		}
+		q = 1 / (l1s * l2s);
+		inv12 = sqrt(q);
+		c = v3_dot(e1, e2) * inv12;
+		v3_store(e, v3_madd(v3_scale(e2, inv12), e1, -c * l2s * q));
+		v3_store(e + 3, v3_madd(v3_scale(e1, inv12), e2, -c * l1s * q));
+	}
+	for (s = 0; s < cl->nhinges; s++) {
+		const struct hinge *hg = &cl->hinges[s];
+		vec3 xb = v3_load(x + 3 * hg->b);
+		vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
+		double d = rest2 + v3_dot(e1, e2), *e = jc->hinge + 10 * s;
+
+		if (!(d > 1e-9 * rest2)) {	/* as forces.c: no gradient */
+			memset(e, 0, 10 * sizeof *e);
+			continue;
+		}
+		v3_store(e, e1);
+		v3_store(e + 3, e2);
+		v3_store(e + 6, v3_scale(v3_cross(e1, e2), 2 / d));
+		e[9] = 1 / d;
+	}
+}
+
+/* The change of a hinge's kb = 2 e1 x e2 / D for changes de1, de2 of its
+ * edges (D = L^2 + e1.e2). */
+static vec3
+hinge_dkb(const double *e, vec3 de1, vec3 de2)
+{
+	vec3 e1 = v3_load(e), e2 = v3_load(e + 3), kb = v3_load(e + 6);
+	vec3 w = v3_scale(v3_add(v3_cross(de1, e2), v3_cross(e1, de2)), 2);
+
+	return v3_scale(v3_madd(w, kb, -(v3_dot(e2, de1) + v3_dot(e1, de2))), e[9]);
+}
+
+void
+jacobian_mul(const struct jacobian *jc, double ck, double cc, const double *p, double *out)
+{
+	const struct cloth *cl = jc->fo->cl;
+	double beta = cc * jc->fo->spring_damping;
+	size_t s;
+
+	memset(out, 0, (size_t)cl->n * 3 * sizeof *out);
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		const double *e = jc->spring + 5 * s;
+		vec3 u = v3_load(e), dp = v3_sub(v3_load(p + 3 * sp->a), v3_load(p + 3 * sp->b));
+		double along = v3_dot(u, dp);
+		/* k u u^T along the spring (with its dashpot beta*k), the
+		 * clamped k(1 - L/l) across it */
+		vec3 f = v3_madd(v3_scale(dp, ck * e[4]), u, along * ((ck + beta) * e[3] - ck * e[4]));
+
+		v3_addto(out + 3 * sp->a, f);
+		v3_addto(out + 3 * sp->b, v3_neg(f));
+	}
+	for (s = 0; s < cl->ncorners; s++) {
+		const struct corner *co = &cl->corners[s];
+		const double *e = jc->corner + 6 * s;
+		vec3 ga = v3_load(e), gb = v3_load(e + 3);
+		double dc = v3_dot(ga, v3_sub(v3_load(p + 3 * co->a), v3_load(p + 3 * co->c))) +
+		    v3_dot(gb, v3_sub(v3_load(p + 3 * co->b), v3_load(p + 3 * co->c)));
+		double w = ck * co->k * dc;
+
+		v3_addto(out + 3 * co->a, v3_scale(ga, w));
+		v3_addto(out + 3 * co->b, v3_scale(gb, w));
+		v3_addto(out + 3 * co->c, v3_scale(v3_add(ga, gb), -w));
+	}
+	for (s = 0; s < cl->nhinges; s++) {
+		const struct hinge *hg = &cl->hinges[s];
+		const double *e = jc->hinge + 10 * s;
+		vec3 pb = v3_load(p + 3 * hg->b);
+		vec3 w = hinge_dkb(e, v3_sub(pb, v3_load(p + 3 * hg->a)),
+		    v3_sub(v3_load(p + 3 * hg->c), pb));
+		vec3 e1 = v3_load(e), e2 = v3_load(e + 3), kb = v3_load(e + 6);
+		double kw = v3_dot(kb, w), s2 = 2 * e[9];
+		/* J^T w: the gradients of kb.w over e1 and over e2 */
+		vec3 g1 = v3_madd(v3_scale(v3_cross(e2, w), s2), e2, -kw * e[9]);
+		vec3 g2 = v3_madd(v3_scale(v3_cross(w, e1), s2), e1, -kw * e[9]);
+		double k = ck * hg->k;
+
+		v3_addto(out + 3 * hg->a, v3_scale(g1, -k));
+		v3_addto(out + 3 * hg->b, v3_scale(v3_sub(g1, g2), k));
+		v3_addto(out + 3 * hg->c, v3_scale(g2, k));
+	}
+}
+
+void
+jacobian_diag(const struct jacobian *jc, double ck, double cc, double *diag)
+{
+	const struct cloth *cl = jc->fo->cl;
+	double beta = cc * jc->fo->spring_damping;
+	size_t s;
+	int i;
+
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		const double *e = jc->spring + 5 * s;
+
+		for (i = 0; i < 3; i++) {
+			double d = ck * e[4] + e[i] * e[i] * ((ck + beta) * e[3] - ck * e[4]);
+
+			diag[3 * sp->a + i] += d;
+			diag[3 * sp->b + i] += d;
+		}
+	}
+	for (s = 0; s < cl->ncorners; s++) {
+		const struct corner *co = &cl->corners[s];
+		const double *e = jc->corner + 6 * s;
+		double k = ck * co->k;
+
+		for (i = 0; i < 3; i++) {
+			diag[3 * co->a + i] += k * e[i] * e[i];
+			diag[3 * co->b + i] += k * e[3 + i] * e[3 + i];
+			diag[3 * co->c + i] += k * (e[i] + e[3 + i]) * (e[i] + e[3 + i]);
+		}
+	}
+	for (s = 0; s < cl->nhinges; s++) {
+		const struct hinge *hg = &cl->hinges[s];
+		const double *e = jc->hinge + 10 * s;
+		double k = ck * hg->k;
+
+		for (i = 0; i < 3; i++) {
+			vec3 u = v3(i == 0, i == 1, i == 2), z = v3(0, 0, 0);
+			vec3 wa = hinge_dkb(e, v3_neg(u), z), wb = hinge_dkb(e, u, v3_neg(u));
+			vec3 wc = hinge_dkb(e, z, u);
+
+			diag[3 * hg->a + i] += k * v3_dot(wa, wa);
+			diag[3 * hg->b + i] += k * v3_dot(wb, wb);
+			diag[3 * hg->c + i] += k * v3_dot(wc, wc);
+		}
+	}
+}

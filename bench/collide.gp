@@ -56,14 +56,15 @@ set title sprintf("time per simulated second by mode, %s s simulated (brute: fir
 set xtics nomirror scale 0 ()
 set for [i = 1:nmodes] xtics add (word(modes, i) i)
 off(s) = (s - 1 - (nsc - 1) / 2.0) * bw
-# the blow-up time only where there is room for it
+# the blow-up time only where there is room for it; one scene's label above
+# the other's (the dumb terminal does not rotate them)
 blew(s) = strcol(4) eq "ok" ? "" : strcol(4) ne "blowup" ? "failed" : \
 	"blew up" . (strcol(17) eq "-" || term ne "png" ? "" : sprintf(" at %.3g s", column(17)))
 plot for [s = 1:nsc] csv skip 1 using (row(s) ? idx(strcol(2)) + off(s) : NaN):5 \
 		with boxes lc rgb col[s] title word(scenes, s), \
 	for [s = 1:nsc] csv skip 1 using (row(s) ? idx(strcol(2)) + off(s) : NaN):($5 * 1.3):(sprintf("%.3gx", $6)) \
 		with labels font lf notitle, \
-	for [s = 1:nsc] csv skip 1 using (row(s) && strcol(4) ne "ok" ? idx(strcol(2)) + off(s) : NaN):(ylo * 1.3):(blew(s)) \
+	for [s = 1:nsc] csv skip 1 using (row(s) && strcol(4) ne "ok" ? idx(strcol(2)) + off(s) : NaN):(ylo * 1.3 * 3 ** (s - 1)):(blew(s)) \
 		with labels rotate left font lf tc rgb "#b00000" notitle, \
 	1 with lines lc rgb "#555555" dt 2 title "real time"
 
@@ -90,5 +91,5 @@ plot for [k = 0:2 * nsc - 1] csv skip 1 using (idx(strcol(2)) + off2(ks(k), k % 
 	for [k = 0:2 * nsc - 1] csv skip 1 using (idx(strcol(2)) + off2(ks(k), k % 2)):(pairs(k) * 1.4):(fmt(pairs(k))) \
 		with labels font lf notitle, \
 	for [s = 1:nsc] csv skip 1 using (row(s) && strcol(4) ne "ok" && idx(strcol(2)) >= first ? \
-		idx(strcol(2)) + off2(s, 0.5) : NaN):(ylo * 1.3):(blew(s)) with labels rotate left font lf tc rgb "#b00000" notitle
+		idx(strcol(2)) + off2(s, 0.5) : NaN):(ylo * 1.3 * 3 ** (s - 1)):(blew(s)) with labels rotate left font lf tc rgb "#b00000" notitle
 unset multiplot

@@ -123,7 +123,8 @@ parse_summary() {
 		if (ct == "") { ct = 0; sc = 0 }
 		if (g == "") g = "-"
 		print (sim == "" ? "-" : sim), (wall == "" ? "-" : wall), (steps == "" ? "-" : steps), \
-			(dt == "" ? "-" : dt), ct, sc, g, (sps == "" ? "-" : sps), np + 0, vt + 0, ee + 0, nt + 0
+			(dt == "" ? "-" : dt), ct, sc, g, (sps == "" ? "-" : sps), \
+			(np == "" ? 0 : np), (vt == "" ? 0 : vt), (ee == "" ? 0 : ee), (nt == "" ? 0 : nt)
 	}'
 }
 

@@ -5,9 +5,9 @@
 # For each scene and mode it runs `drape run --headless --until T` on a
 # temporary copy of the scene, edited to the mode, BENCH_RUNS times (the
 # modes interleaved, so that a slow spell of this shared machine hits them
-# all alike), and prints the medians. Data go to $BENCH_OUT/collide.dat
-# (medians) and collide-runs.dat (every run); with gnuplot, the chart to
-# collide.png. See bench/README.md.
+# all alike), and prints the medians. Writes collide.csv (medians),
+# collide-runs.csv (every run) and collide.png under BENCH_RESULTS; prints
+# the table and a dumb-terminal chart. See bench/README.md.
 #
 # Environment:
 #   BENCH_RUNS        runs per scene and mode (default 3)
@@ -15,241 +15,119 @@
 #                     are in self-contact by then)
 #   BENCH_BRUTE_UNTIL simulated time of the brute runs (default 0.1 s)
 #   BENCH_SCENES      scene names under scenes/ (default "tablecloth strip")
-#   BENCH_OUT         output directory (default bench/out)
-#   DRAPE             the binary (default src/drape)
-#   BENCH_SRCDIR      the source tree, for scenes/ (default: this script's ..)
-#   GNUPLOT           the gnuplot to draw the chart with (default gnuplot)
+#   BENCH_RESULTS     output directory (default bench/results)
+#   DRAPE, BENCH_SRCDIR, GNUPLOT
 set -u
-
-here=$(cd "$(dirname "$0")" && pwd)
-srcdir=${BENCH_SRCDIR:-$(cd "$here/.." && pwd)}
-drape=${DRAPE:-$srcdir/src/drape}
-out=${BENCH_OUT:-$srcdir/bench/out}
-runs=${BENCH_RUNS:-3}
+prog=collide.sh
+. "$(cd "$(dirname "$0")" && pwd)/lib.sh"
 until_t=${BENCH_UNTIL:-1}
 brute_t=${BENCH_BRUTE_UNTIL:-0.1}
 scenes=${BENCH_SCENES:-tablecloth strip}
+check_seconds "$until_t" BENCH_UNTIL
+check_seconds "$brute_t" BENCH_BRUTE_UNTIL
+[ -n "${scenes// /}" ] || die "BENCH_SCENES is empty"
 
-die() { echo "collide.sh: $*" >&2; exit 2; }
-case $runs in '' | *[!0-9]* | 0) die "BENCH_RUNS must be a whole number > 0, not '$runs'" ;; esac
-for v in "$until_t" "$brute_t"; do
-	awk -v t="$v" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }' ||
-		die "BENCH_UNTIL and BENCH_BRUTE_UNTIL are seconds > 0, not '$v'"
-done
-[ -x "$drape" ] || die "no binary at $drape: build first (make), or set DRAPE"
-mkdir -p "$out" || die "cannot create $out"
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/drape-bench.XXXXXX") || die "mktemp failed"
-trap 'rm -rf "$tmp"' EXIT
-trap 'exit 130' INT TERM
-
-# mode: label broad narrow position self obstacles
-# "-" keeps the scene's own value; obstacles "no" removes every obstacle
-# section and the [collision] section (nothing to collide with: the
-# force computation and the integrator alone).
-modes="none      -     -    -     off no
-self-off  -     -    -     off yes
-chapter   seed  seed keep  on  yes
-seed      seed  ccd  slide on  yes
-grid      grid  ccd  slide on  yes
-brute     brute ccd  slide on  yes"
-
-# edit SRC > DST for a mode: set the given keys in [collision] (adding the
-# section if there is none), or drop [collision] and the obstacles.
-edit_scene() { # src broad narrow position self obstacles
-	awk -v broad="$2" -v narrow="$3" -v position="$4" -v self="$5" -v obst="$6" '
-	function keys() {
-		print "self = " self
-		if (broad != "-") print "broad = " broad
-		if (narrow != "-") print "narrow = " narrow
-		if (position != "-") print "position = " position
-	}
-	/^[ \t]*\[/ {
-		sec = $0; sub(/^[ \t]*\[/, "", sec); sub(/\].*/, "", sec)
-		drop = (obst == "no" && sec ~ /^(collision|plane|box|sphere|disc|mesh|icosahedron)$/)
-		if (drop) next
-		print
-		if (sec == "collision") { keys(); seen = 1 }
-		next
-	}
-	drop { next }
-	sec == "collision" && /^[ \t]*(self|broad|narrow|position)[ \t]*=/ { next }
-	{ print }
-	END { if (obst != "no" && !seen) { print ""; print "[collision]"; keys() } }
-	' "$1"
+modes="none self-off chapter seed grid brute"
+edits() { # mode -> the edit_scene arguments
+	case $1 in
+	# nothing to collide with: the forces and the integrator alone
+	none) for s in collision plane box sphere disc mesh icosahedron; do echo "$s.=drop"; done ;;
+	self-off) echo "collision.self=off" ;;
+	chapter) printf '%s\n' collision.self=on collision.broad=seed collision.narrow=seed collision.position=keep ;;
+	*) printf '%s\n' collision.self=on "collision.broad=$1" collision.narrow=ccd collision.position=slide ;;
+	esac
 }
-
-# parse a summary on stdin into one line of figures:
-# simulated wall steps_per_s node_pairs vt ee narrow contacts self_contacts obstacle
-parse_summary() {
-	awk '
-	function num(s) { gsub(/[^0-9.eE+-]/, "", s); return s }
-	/^simulated / { sim = $2 }
-	/^wall time / { wall = $3 }
-	/^speed / { for (i = 2; i <= NF; i++) if ($i ~ /^steps\/s/) sps = num($(i - 1)) }
-	/^per step / {
-		for (i = 2; i < NF; i++) {
-			if ($(i + 1) == "node") np = num($i)
-			if ($(i + 1) == "vertex-triangle") vt = num($i)
-			if ($(i + 1) == "edge-edge") ee = num($i)
-			if ($(i + 1) == "narrow") nt = num($i)
-		}
-	}
-	/^contacts / {
-		line = $0; sub(/^contacts[ \t]*/, "", line)
-		n = split(line, part, ",")
-		tot = 0; ob = 0
-		for (k = 1; k <= n; k++) {
-			m = split(part[k], w, " ")
-			if (m < 2) continue
-			tot += w[m]
-			if (w[1] == "obstacle") ob += w[m]
-		}
-		ct = tot; oc = ob; sc = tot - ob
-	}
-	END {
-		if (np == "") np = 0; if (vt == "") vt = 0; if (ee == "") ee = 0
-		if (nt == "") nt = 0; if (ct == "") { ct = 0; sc = 0; oc = 0 }
-		print sim, wall, sps, np, vt, ee, nt, ct, sc, oc
-	}'
-}
-
-median() { # numbers on stdin, one a line, "-" skipped; prints "-" if none
-	grep -v '^-$' | sort -g | awk '{ v[NR] = $1 }
-	END {
-		if (NR == 0) { print "-"; exit }
-		if (NR % 2) m = v[(NR + 1) / 2]; else m = (v[NR / 2] + v[NR / 2 + 1]) / 2
-		printf "%.6g\n", m
-	}'
-}
-
-version=$("$drape" --version 2>/dev/null | head -n 1)
-commit=$(git -C "$srcdir" rev-parse --short HEAD 2>/dev/null || echo "?")
-cpu=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null)
-ncpu=$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?")
-stamp=$(date -u '+%Y-%m-%d %H:%M UTC')
+mode_t() { if [ "$1" = brute ]; then echo "$brute_t"; else echo "$until_t"; fi; }
 
 echo "collision benchmark: $version (commit $commit), $stamp"
-echo "machine: $ncpu cores, ${cpu:-unknown cpu}; load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+echo "machine: $ncpu cores, ${cpu:-unknown cpu}; load $(load)"
 echo "runs: median of $runs per scene and mode; simulated $until_t s (brute: the first $brute_t s only, it is slow)"
 echo
 
-# prepare the scene copies
 for sc in $scenes; do
 	src=$srcdir/scenes/$sc.scene
 	[ -r "$src" ] || die "no scene $src"
-	while read -r label broad narrow position self obst; do
-		edit_scene "$src" "$broad" "$narrow" "$position" "$self" "$obst" >"$tmp/$sc-$label.scene"
-	done <<<"$modes"
+	for m in $modes; do
+		mapfile -t e < <(edits "$m")
+		edit_scene "$src" ${e[@]+"${e[@]}"} >"$tmp/$sc-$m.scene"
+	done
 done
 
-rawf=$out/collide-runs.dat
-{
-	echo "# drape collision benchmark, every run: $version (commit $commit), $stamp"
-	echo "# machine: $ncpu cores, ${cpu:-unknown cpu}"
-	echo "# scene mode run until exit simulated wall steps_per_s node_pairs vt_pairs ee_pairs narrow_tests contacts self_contacts obstacle_contacts cpu"
-} >"$rawf"
-TIMEFORMAT='%3U %3S'
-
+rawf=$tmp/runs
+: >"$rawf"
 bad=0
-nmodes=$(wc -l <<<"$modes")
-total=$((runs * nmodes * $(wc -w <<<"$scenes")))
-done_n=0
 for r in $(seq 1 "$runs"); do
 	for sc in $scenes; do
-		while read -r label _; do
-			t=$until_t
-			[ "$label" = brute ] && t=$brute_t
-			f=$tmp/$sc-$label.scene
-			done_n=$((done_n + 1))
-			[ -t 2 ] && printf '\r  run %d/%d: %s %s (%s s)          ' "$done_n" "$total" "$sc" "$label" "$t" >&2
-			# bash's time: the CPU seconds (user + system) of the run, which a
-			# busy machine inflates less than the wall time
-			{ time "$drape" run --headless --until "$t" "$f" >"$tmp/stdout" 2>"$tmp/stderr"; } 2>"$tmp/time"
-			rc=$?
-			cpu_s=$(awk 'NF == 2 { printf "%.3f", $1 + $2 }' "$tmp/time")
-			fig=$(parse_summary <"$tmp/stdout")
-			case $rc in
-			0) ;;
-			3) sed "s|$tmp/||" "$tmp/stderr" | head -n 1 >"$tmp/$sc-$label.blowup" ;;
-			*)
-				bad=1
-				{ echo; echo "collide.sh: $sc $label: drape exited $rc:"; sed 's/^/  /' "$tmp/stderr"; } >&2
-				;;
-			esac
-			echo "$sc $label $r $t $rc $fig ${cpu_s:--}" >>"$rawf"
-		done <<<"$modes"
+		for m in $modes; do
+			run_once "$sc" "$m" "$(mode_t "$m")" "$r"
+		done
 	done
 done
 [ -t 2 ] && printf '\r%60s\r' '' >&2
 
-# medians; ratio = median over the runs of (this mode's wall/simulated) /
-# (the none mode's wall/simulated in the same round)
-datf=$out/collide.dat
-{
-	echo "# drape collision benchmark: $version (commit $commit), $stamp"
-	echo "# machine: $ncpu cores, ${cpu:-unknown cpu}; medians of $runs runs; until $until_t s, brute $brute_t s"
-	echo "# wall_per_sim: wall seconds per simulated second; ratio: that over the no-collision (none) run of the same round"
-	echo "# cpu_per_sim, cpu_ratio: the same with the run's CPU time (user + system) in place of its wall time"
-	echo "# per-step figures are averages over the steps of a run; contacts are over the run (they grow with until)"
-	echo "# '-' is missing: the mode blew up (exit 3) or failed (status column)"
-	echo "# idx scene mode until status wall_per_sim ratio steps_per_s node_pairs vt_pairs ee_pairs narrow_tests contacts self_contacts obstacle_contacts cpu_per_sim cpu_ratio"
-} >"$datf"
+# rawf: 1 scene 2 mode 3 round 4 exit 5 simulated 6 wall 7 steps 8 dt
+# 9 contacts 10 self 11 gravity 12 steps/s 13 node 14 vt 15 ee 16 narrow 17 cpu
+runsf=$results/collide-runs.csv
+echo "scene,mode,round,until_s,exit,simulated_s,wall_s,cpu_s,steps,steps_per_s,node_pairs,vt_pairs,ee_pairs,narrow_tests,contacts,self_contacts,obstacle_contacts" >"$runsf"
+awk -v ut="$until_t" -v bt="$brute_t" '{
+	ob = ($9 == "-" || $10 == "-") ? "-" : $9 - $10
+	print $1, $2, $3, ($2 == "brute" ? bt : ut), $4, $5, $6, $17, $7, $12, $13, $14, $15, $16, $9, $10, ob
+}' OFS=, "$rawf" >>"$runsf"
 
+# ratio: median over the rounds of (this mode's time / simulated) over the
+# none run's of the same round
+ratio_of() { # scene mode column-of-the-time
+	awk -v s="$1" -v m="$2" -v c="$3" '
+	$1 == s && $2 == "none" && $4 == 0 && $5 > 0 && $c != "-" { base[$3] = $c / $5 }
+	$1 == s && $2 == m && $4 == 0 && $5 > 0 && $c != "-" { this[$3] = $c / $5 }
+	END { for (r in this) if ((r in base) && base[r] > 0) printf "%.6g\n", this[r] / base[r] }
+	' "$rawf" | median
+}
+csv=$results/collide.csv
+echo "scene,mode,until_s,status,wall_per_sim,ratio,cpu_per_sim,cpu_ratio,steps_per_s,node_pairs,vt_pairs,ee_pairs,narrow_tests,contacts,self_contacts,obstacle_contacts,blowup_t_s" >"$csv"
 hdr='%-10s %-9s %5s %9s %7s %8s %7s %8s %10s %10s %10s %8s %8s\n'
 printf "$hdr" scene mode T wall/sim ratio cpu/sim ratio steps/s vt/step ee/step narrow/st self obstacle
 printf "$hdr" '' '' '(s)' '(s/s)' /none '(s/s)' /none '' pairs pairs tests contacts contacts
-first=1
 for sc in $scenes; do
-	[ $first = 1 ] || printf '\n\n' >>"$datf"
-	first=0
-	idx=0
-	while read -r label _; do
-		idx=$((idx + 1))
-		rows=$(awk -v s="$sc" -v m="$label" '$1 == s && $2 == m' "$rawf")
-		t=$(awk 'NR == 1 { print $4 }' <<<"$rows")
-		nrc=$(awk '$5 != 0' <<<"$rows" | wc -l)
+	for m in $modes; do
+		t=$(mode_t "$m")
+		rows=$(awk -v s="$sc" -v m="$m" '$1 == s && $2 == m' "$rawf")
+		nrc=$(awk '$4 != 0' <<<"$rows" | wc -l)
 		status=ok
-		if [ "$nrc" -gt 0 ]; then
-			if awk '$5 != 0 && $5 != 3 { f = 1 } END { exit !f }' <<<"$rows"; then
-				status=error
-			else
-				status=blowup
-			fi
-		fi
+		awk '$4 == 3 { f = 1 } END { exit !f }' <<<"$rows" && status=blowup
+		awk '$4 != 0 && $4 != 3 { f = 1 } END { exit !f }' <<<"$rows" && status=error
+		# the counts of one run: the runs are bit-identical, only the times vary
+		col() { awk -v c="$1" '$4 == 0 { print $c; exit }' <<<"$rows"; }
+		bt=-
 		if [ $status = ok ]; then
-			col() { awk -v c="$1" '{ print $c }' <<<"$rows" | median; }
-			wps=$(awk '$6 > 0 { printf "%.6g\n", $7 / $6 }' <<<"$rows" | median)
-			sps=$(col 8); np=$(col 9); vt=$(col 10); ee=$(col 11); nt=$(col 12)
-			ct=$(col 13); sct=$(col 14); oct=$(col 15)
-			cps=$(awk '$6 > 0 && $16 != "-" { printf "%.6g\n", $16 / $6 }' <<<"$rows" | median)
-			ratio_of() { # column of the time
-				awk -v s="$sc" -v m="$label" -v c="$1" '
-				$1 == s && $2 == "none" && $5 == 0 && $6 > 0 && $c != "-" { base[$3] = $c / $6 }
-				$1 == s && $2 == m && $5 == 0 && $6 > 0 && $c != "-" { this[$3] = $c / $6 }
-				END { for (r in this) if ((r in base) && base[r] > 0) printf "%.6g\n", this[r] / base[r] }
-				' "$rawf" | median
-			}
-			ratio=$(ratio_of 7)
-			cratio=$(ratio_of 16)
+			wps=$(awk '$5 > 0 { printf "%.6g\n", $6 / $5 }' <<<"$rows" | median)
+			cps=$(awk '$5 > 0 && $17 != "-" { printf "%.6g\n", $17 / $5 }' <<<"$rows" | median)
+			ratio=$(ratio_of "$sc" "$m" 6)
+			cratio=$(ratio_of "$sc" "$m" 17)
+			sps=$(awk '$4 == 0 { print $12 }' <<<"$rows" | median)
+			np=$(col 13); vt=$(col 14); ee=$(col 15); nt=$(col 16)
+			ct=$(col 9); sct=$(col 10)
+			oct=$(awk '$4 == 0 { print $9 - $10; exit }' <<<"$rows")
 		else
-			wps=-; ratio=-; sps=-; np=-; vt=-; ee=-; nt=-; ct=-; sct=-; oct=-; cps=-; cratio=-
+			wps=-; ratio=-; cps=-; cratio=-; sps=-; np=-; vt=-; ee=-; nt=-; ct=-; sct=-; oct=-
+			[ $status = blowup ] &&
+				bt=$(sed -n 's/.*(t = \([0-9.eE+-]*\) s).*/\1/p' "$tmp/$sc-$m.blowup" 2>/dev/null | head -n 1)
 		fi
-		echo "$idx $sc $label $t $status $wps $ratio $sps $np $vt $ee $nt $ct $sct $oct $cps $cratio" >>"$datf"
+		echo "$sc,$m,$t,$status,$wps,$ratio,$cps,$cratio,$sps,$np,$vt,$ee,$nt,$ct,$sct,$oct,${bt:--}" >>"$csv"
 		case $status in
 		ok)
 			printf '%-10s %-9s %5s %9.4g %6.3gx %8.4g %6.3gx %8.0f %10.1f %10.1f %10.1f %8s %8s\n' \
-				"$sc" "$label" "$t" "$wps" "$ratio" "$cps" "$cratio" "$sps" "$vt" "$ee" "$nt" "$sct" "$oct"
+				"$sc" "$m" "$t" "$wps" "$ratio" "$cps" "$cratio" "$sps" "$vt" "$ee" "$nt" "$sct" "$oct"
 			;;
 		blowup)
-			printf '%-10s %-9s %5s BLEW UP (exit 3) in %d of %d runs: %s\n' "$sc" "$label" "$t" \
-				"$nrc" "$runs" "$(cat "$tmp/$sc-$label.blowup" 2>/dev/null)"
+			printf '%-10s %-9s %5s BLEW UP (exit 3) in %d of %d runs: %s\n' "$sc" "$m" "$t" \
+				"$nrc" "$runs" "$(cat "$tmp/$sc-$m.blowup" 2>/dev/null)"
 			;;
 		*)
-			printf '%-10s %-9s %5s FAILED (drape exit status other than 0 or 3; see above)\n' \
-				"$sc" "$label" "$t"
+			printf '%-10s %-9s %5s FAILED (drape exit status other than 0 or 3; see above)\n' "$sc" "$m" "$t"
 			;;
 		esac
-	done <<<"$modes"
+	done
 done
 cat <<EOF
 
@@ -265,23 +143,9 @@ vt, ee, narrow: vertex-triangle and edge-edge candidate pairs and narrow tests
   per step (averages over a run); contacts: over the whole run (they grow with
   T, so brute's, over its shorter T, are not comparable with the others').
 brute ran only the first $brute_t s of each scene (the others $until_t s).
-load average at the end: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null) ($ncpu cores)
-data: $datf
+load average at the end: $(load) ($ncpu cores)
+data: $csv, $runsf
 EOF
-
-gnuplot=${GNUPLOT:-gnuplot}
-if command -v "$gnuplot" >/dev/null 2>&1; then
-	if "$gnuplot" -e "datf='$datf'; outf='$out/collide.png'; runs='$runs'; until_t='$until_t'; brute_t='$brute_t'; stamp='$stamp'; ncpu='$ncpu'" \
-		"$here/collide.gp" 2>"$tmp/gp.err"; then
-		echo "chart: $out/collide.png"
-	else
-		echo "collide.sh: gnuplot failed, no chart:" >&2
-		cat "$tmp/gp.err" >&2
-		bad=1
-	fi
-else
-	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
-	echo "  To draw $out/collide.png, install it:  sudo apt-get install -y gnuplot-nox"
-	echo "  (Debian/Ubuntu; gnuplot elsewhere), then run make bench again."
-fi
+plot collide.gp "$csv" "$results/collide.png" \
+	"stamp='$stamp'; runs='$runs'; ncpu='$ncpu'; until_t='$until_t'; brute_t='$brute_t'" || bad=1
 exit $bad

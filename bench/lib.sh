@@ -1,5 +1,6 @@
-# Shared by bench/accuracy.sh, bench/scaling.sh and bench/needs.sh (sourced,
-# not run): the paths, the scene editor, the summary parser, medians.
+# Shared by the bench scripts that write to BENCH_RESULTS (sourced, not
+# run): the paths, the scene editor, one timed run, the summary parser,
+# medians, the chart.
 #
 # Environment (see bench/README.md): DRAPE, BENCH_SRCDIR, BENCH_RESULTS,
 # BENCH_RUNS, GNUPLOT.
@@ -72,25 +73,40 @@ edit_scene() {
 	' - "$src"
 }
 
-# summary on stdin -> "simulated wall steps dt contacts self_contacts gravity_energy"
 # One run of $tmp/SCENE-LABEL.scene to T, appended to $rawf as
-# "SCENE LABEL ROUND STATUS summary-fields"; a blow-up (exit 3) keeps its
-# message in $tmp/SCENE-LABEL.blowup, any other failure sets bad=1.
+# "SCENE LABEL ROUND STATUS summary-fields CPU" (CPU: user + system
+# seconds, which other jobs inflate less than the wall time); a blow-up
+# (exit 3) keeps its message in $tmp/SCENE-LABEL.blowup, any other failure
+# sets bad=1.
 run_once() { # scene label until round
-	local rc
+	local rc cpu_s TIMEFORMAT='%3U %3S'
 	[ -t 2 ] && printf '\r  round %d: %s %s          ' "$4" "$1" "$2" >&2
-	"$drape" run --headless --until "$3" "$tmp/$1-$2.scene" >"$tmp/out" 2>"$tmp/err"
+	{ time "$drape" run --headless --until "$3" "$tmp/$1-$2.scene" >"$tmp/out" 2>"$tmp/err"; } 2>"$tmp/time"
 	rc=$?
 	case $rc in 0 | 3) ;; *) bad=1; { echo "$prog: $1 $2: drape run exited $rc:"; cat "$tmp/err"; } >&2 ;; esac
 	[ $rc = 3 ] && head -n 1 "$tmp/err" | sed "s|$tmp/||" >"$tmp/$1-$2.blowup"
-	echo "$1 $2 $4 $rc $(parse_summary <"$tmp/out")" >>"$rawf"
+	cpu_s=$(awk 'NF == 2 { printf "%.3f", $1 + $2 }' "$tmp/time")
+	echo "$1 $2 $4 $rc $(parse_summary <"$tmp/out") ${cpu_s:--}" >>"$rawf"
 }
 
+# summary on stdin -> "simulated wall steps dt contacts self_contacts
+# gravity_energy steps_per_s node_pairs vt_pairs ee_pairs narrow_tests"
+# (the last five: the speed and per step lines; 0 when collisions are off)
 parse_summary() {
 	awk '
+	function num(s) { gsub(/[^0-9.eE+-]/, "", s); return s }
 	/^simulated / { sim = $2 }
 	/^wall time / { wall = $3 }
 	/^steps / { steps = $2 }
+	/^speed / { for (i = 2; i <= NF; i++) if ($i ~ /^steps\/s/) sps = num($(i - 1)) }
+	/^per step / {
+		for (i = 2; i < NF; i++) {
+			if ($(i + 1) == "node") np = num($i)
+			if ($(i + 1) == "vertex-triangle") vt = num($i)
+			if ($(i + 1) == "edge-edge") ee = num($i)
+			if ($(i + 1) == "narrow") nt = num($i)
+		}
+	}
 	/^integrator / { for (i = 2; i <= NF; i++) if ($i == "dt") { dt = $(i + 1); break } }
 	/^energy / { for (i = 2; i <= NF; i++) if ($i == "gravity") { g = $(i + 1); gsub(/[,()]/, "", g) } }
 	/^contacts / {
@@ -107,7 +123,8 @@ parse_summary() {
 		if (ct == "") { ct = 0; sc = 0 }
 		if (g == "") g = "-"
 		print (sim == "" ? "-" : sim), (wall == "" ? "-" : wall), (steps == "" ? "-" : steps), \
-			(dt == "" ? "-" : dt), ct, sc, g
+			(dt == "" ? "-" : dt), ct, sc, g, (sps == "" ? "-" : sps), \
+			(np == "" ? 0 : np), (vt == "" ? 0 : vt), (ee == "" ? 0 : ee), (nt == "" ? 0 : nt)
 	}'
 }
 

@@ -1,10 +1,9 @@
 # Chart of bench/scaling.sh's scaling.csv: gnuplot -e "csv=...; term='png'|'dumb';
-# outf=...; stamp=...; runs=...; until_t=...; s_on=...; a_on=...; s_off=...;
-# a_off=..." scaling.gp
+# outf=...; stamp=...; runs=...; until_t=..." scaling.gp
 # Log-log wall seconds per simulated second against nodes, self-collision
-# on and off, with the least-squares lines (slope s, intercept a of
-# log t = a + s log n) and the target (100 x 100 at 5 s per simulated s).
-# csv columns: 1 side, 2 nodes, 3 self, 4 status, 7 wall_per_sim
+# on and off, for rk4 and implicit-euler, with the targets (25 x 25 at
+# 0.05 s and 100 x 100 at 5 s per simulated s).
+# csv columns: 1 side, 2 nodes, 3 integrator, 4 self, 5 status, 8 wall_per_sim
 if (!exists("csv")) csv = "scaling.csv"
 if (!exists("term")) term = "png"
 if (!exists("stamp")) stamp = ""
@@ -26,12 +25,12 @@ set xlabel "nodes (log)"
 set ylabel "wall s per simulated s (log)"
 set key top left
 set xrange [400:60000]
+set yrange [0.02:*]
 set title sprintf("tablecloth at 25^2 .. 200^2 nodes, 10 mm spacing (medians of %s runs of %s s; %s)", runs, until_t, stamp)
-sel(s) = (strcol(3) eq s && strcol(4) eq "ok") ? $7 : NaN
-fon(x) = exp(a_on) * x ** s_on
-foff(x) = exp(a_off) * x ** s_off
+sel(m, s) = (strcol(3) eq m && strcol(4) eq s && strcol(5) eq "ok") ? $8 : NaN
 set label 1 "target: 100^2 at 5 s" at 10000, 5 point pt 6 ps 2 offset 1.5,0
-plot csv skip 1 using 2:(sel("on")) with points pt 7 ps ps lc rgb "#d62728" title "self-collision on (grid + ccd)", \
-	fon(x) with lines lc rgb "#d62728" dt 2 title sprintf("fit, slope %.2f", s_on), \
-	csv skip 1 using 2:(sel("off")) with points pt 5 ps ps lc rgb "#1f77b4" title "self-collision off (box, floor)", \
-	foff(x) with lines lc rgb "#1f77b4" dt 2 title sprintf("fit, slope %.2f", s_off)
+set label 2 "target: 25^2 at 0.05 s" at 625, 0.05 point pt 6 ps 2 offset 1.5,0
+plot csv skip 1 using 2:(sel("rk4", "on")) with linespoints pt 7 ps ps lc rgb "#d62728" title "rk4, self-collision on", \
+	csv skip 1 using 2:(sel("rk4", "off")) with linespoints pt 5 ps ps lc rgb "#1f77b4" title "rk4, self off (box, floor)", \
+	csv skip 1 using 2:(sel("implicit-euler", "on")) with linespoints pt 9 ps ps lc rgb "#ff7f0e" dt 2 title "implicit-euler, self on", \
+	csv skip 1 using 2:(sel("implicit-euler", "off")) with linespoints pt 11 ps ps lc rgb "#2ca02c" dt 2 title "implicit-euler, self off"

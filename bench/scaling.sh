@@ -3,7 +3,9 @@
 # scene at N x N nodes (default 25, 50, 100, 200), with self-collision on
 # (grid + ccd, the scene's own setting) and off (self = off: the box and
 # the floor only), and the least-squares slope of log time against log
-# nodes.
+# nodes; for each integrator of BENCH_SCALING_INTEGRATORS (the scene's
+# rk4, whose step stiffness sets, and implicit-euler, whose step is half a
+# spacing at the scene's speed scale).
 #
 # The scenes are the tablecloth made bigger at the same 10 mm spacing: the
 # same material, the same dt (set by the spacing and the stiffness), the
@@ -17,6 +19,7 @@
 #   BENCH_RUNS     runs per size and mode (default 3); the figures are medians
 #   BENCH_SCALING_SIZES    nodes per side (default "25 50 100 200")
 #   BENCH_SCALING_UNTIL    simulated seconds of each run (default 0.1)
+#   BENCH_SCALING_INTEGRATORS  (default "rk4 implicit-euler")
 #   BENCH_RESULTS  output directory (default bench/results)
 #   DRAPE, BENCH_SRCDIR, GNUPLOT
 set -u
@@ -24,6 +27,11 @@ prog=scaling.sh
 . "$(cd "$(dirname "$0")" && pwd)/lib.sh"
 sizes=${BENCH_SCALING_SIZES:-25 50 100 200}
 until_t=${BENCH_SCALING_UNTIL:-0.1}
+integs=${BENCH_SCALING_INTEGRATORS:-rk4 implicit-euler}
+for m in $integs; do
+	case $m in euler | symplectic-euler | rk2 | rk4 | dopri5 | implicit-euler) ;;
+	*) die "BENCH_SCALING_INTEGRATORS: no integrator '$m'" ;; esac
+done
 check_seconds "$until_t" BENCH_SCALING_UNTIL
 timebin=/usr/bin/time
 [ -x "$timebin" ] || die "$timebin not found (it gives the peak memory): sudo apt-get install -y time"
@@ -52,25 +60,29 @@ rawf=$tmp/runs
 bad=0
 for r in $(seq 1 "$runs"); do
 	for n in $sizes; do
-		for self in on off; do
-			[ -t 2 ] && printf '\r  run %d: %s^2 self %s          ' "$r" "$n" "$self" >&2
-			"$timebin" -f %M -o "$tmp/mem" "$drape" run --headless --until "$until_t" "$tmp/$n-$self.scene" \
-				>"$tmp/out" 2>"$tmp/err"
-			rc=$?
-			case $rc in 0 | 3) ;; *) bad=1; { echo "$prog: $n $self: drape run exited $rc:"; cat "$tmp/err"; } >&2 ;; esac
-			mem=$(awk '/^[0-9]+$/ { m = $1 } END { print (m == "" ? "-" : m) }' "$tmp/mem")
-			echo "$n $self $r $rc $mem $(parse_summary <"$tmp/out")" >>"$rawf"
+		for m in $integs; do
+			for self in on off; do
+				[ -t 2 ] && printf '\r  run %d: %s^2 %s self %s          ' "$r" "$n" "$m" "$self" >&2
+				"$timebin" -f %M -o "$tmp/mem" "$drape" run --headless --integrator "$m" \
+					--until "$until_t" "$tmp/$n-$self.scene" >"$tmp/out" 2>"$tmp/err"
+				rc=$?
+				case $rc in 0 | 3) ;; *) bad=1; { echo "$prog: $n $m $self: drape run exited $rc:"; cat "$tmp/err"; } >&2 ;; esac
+				mem=$(awk '/^[0-9]+$/ { m = $1 } END { print (m == "" ? "-" : m) }' "$tmp/mem")
+				echo "$n $m/$self $r $rc $mem $(parse_summary <"$tmp/out")" >>"$rawf"
+			done
 		done
 	done
 done
 [ -t 2 ] && printf '\r%50s\r' '' >&2
 
 csv=$results/scaling.csv
-echo "side,nodes,self,status,dt_s,steps,wall_per_sim,ms_per_step,ns_per_step_node,peak_mib" >"$csv"
-printf '%6s %7s %4s %-7s %10s %7s %10s %9s %12s %9s\n' side nodes self status dt steps wall/sim ms/step ns/step/node peak-MiB
-for self in on off; do
+echo "side,nodes,integrator,self,status,dt_s,steps,wall_per_sim,ms_per_step,ns_per_step_node,peak_mib" >"$csv"
+printf '%6s %7s %-14s %4s %-7s %10s %7s %10s %9s %12s %9s\n' side nodes integrator self status dt steps wall/sim ms/step ns/step/node peak-MiB
+modes=$(for m in $integs; do echo "$m/on $m/off"; done)
+for mode in $modes; do
+	m=${mode%/*} self=${mode#*/}
 	for n in $sizes; do
-		rows=$(awk -v n="$n" -v s="$self" '$1 == n && $2 == s' "$rawf")
+		rows=$(awk -v n="$n" -v s="$mode" '$1 == n && $2 == s' "$rawf")
 		status=ok
 		awk '$4 == 3 { f = 1 } END { exit !f }' <<<"$rows" && status=blowup
 		awk '$4 != 0 && $4 != 3 { f = 1 } END { exit !f }' <<<"$rows" && status=error
@@ -80,33 +92,31 @@ for self in on off; do
 		mps=$(awk '$4 == 0 && $8 > 0 { printf "%.6g\n", 1000 * $7 / $8 }' <<<"$rows" | median)
 		npn=$(awk -v n="$n" '$4 == 0 && $8 > 0 { printf "%.6g\n", 1e9 * $7 / $8 / (n * n) }' <<<"$rows" | median)
 		mem=$(awk '$5 != "-" { printf "%.4g\n", $5 / 1024 }' <<<"$rows" | median)
-		echo "$n,$((n * n)),$self,$status,$dt,$steps,$wps,$mps,$npn,$mem" >>"$csv"
-		printf '%6s %7s %4s %-7s %10s %7s %10s %9s %12s %9s\n' "$n" $((n * n)) "$self" "$status" "$dt" "$steps" "$wps" "$mps" "$npn" "$mem"
+		echo "$n,$((n * n)),$m,$self,$status,$dt,$steps,$wps,$mps,$npn,$mem" >>"$csv"
+		printf '%6s %7s %-14s %4s %-7s %10s %7s %10s %9s %12s %9s\n' "$n" $((n * n)) "$m" "$self" "$status" "$dt" "$steps" "$wps" "$mps" "$npn" "$mem"
 	done
 done
 
 # least squares of log(wall/sim) on log(nodes), per mode
 fitf=$results/scaling-fit.csv
-echo "self,slope,intercept,points" >"$fitf"
-for self in on off; do
-	awk -F, -v s="$self" 'NR > 1 && $3 == s && $4 == "ok" && $7 > 0 {
-		x = log($2); y = log($7); n++; sx += x; sy += y; sxx += x * x; sxy += x * y
+echo "integrator,self,slope,intercept,points" >"$fitf"
+for mode in $modes; do
+	awk -F, -v m="${mode%/*}" -v s="${mode#*/}" 'NR > 1 && $3 == m && $4 == s && $5 == "ok" && $8 > 0 {
+		x = log($2); y = log($8); n++; sx += x; sy += y; sxx += x * x; sxy += x * y
 	}
 	END {
-		if (n < 2) { print s ",-,-," n + 0; exit }
+		if (n < 2) { print m "," s ",-,-," n + 0; exit }
 		b = (n * sxy - sx * sy) / (n * sxx - sx * sx); a = (sy - b * sx) / n
-		printf "%s,%.4f,%.6g,%d\n", s, b, a, n
+		printf "%s,%s,%.4f,%.6g,%d\n", m, s, b, a, n
 	}' "$csv" >>"$fitf"
 done
-slope_on=$(awk -F, '$1 == "on" { print $2 }' "$fitf"); int_on=$(awk -F, '$1 == "on" { print $3 }' "$fitf")
-slope_off=$(awk -F, '$1 == "off" { print $2 }' "$fitf"); int_off=$(awk -F, '$1 == "off" { print $3 }' "$fitf")
-nan() { case $1 in '' | -) echo NaN ;; *) echo "$1" ;; esac; }
-t100=$(awk -F, '$1 == 100 && $3 == "on" { print $7 }' "$csv")
+echo
+echo "slope of log(wall s per simulated s) against log(nodes), least squares"
+echo "(1 = time per step linear in nodes, at a step that does not change with size):"
+awk -F, 'NR > 1 { printf "  %-14s self %-3s  slope %s (%s sizes)\n", $1, $2, $3, $5 }' "$fitf"
+echo "targets, self on: 25 x 25 at most 0.05 s and 100 x 100 at most 5 s of wall time per simulated second:"
+awk -F, 'NR > 1 && $4 == "on" && ($1 == 25 || $1 == 100) { printf "  %3d^2 %-14s %s s\n", $1, $3, $8 }' "$csv"
 cat <<EOF
-
-slope of log(wall s per simulated s) against log(nodes), least squares:
-  self on:  $slope_on     self off: $slope_off     (1 = time per step linear in nodes; dt is the same at every size)
-target: 100 x 100 at most 5 s of wall time per simulated second: ${t100:-not measured} s (self on)
 wall/sim: wall seconds per simulated second; ms/step and ns/step/node: wall
   time over steps (over steps and nodes); peak-MiB: maximum resident set
   (/usr/bin/time -f %M), medians of $runs runs of $until_t s simulated.
@@ -114,5 +124,5 @@ load average at the end: $(load) ($ncpu cores)
 data: $csv, $fitf
 EOF
 plot scaling.gp "$csv" "$results/scaling.png" \
-	"stamp='$stamp'; runs='$runs'; until_t='$until_t'; s_on=$(nan "$slope_on"); a_on=$(nan "$int_on"); s_off=$(nan "$slope_off"); a_off=$(nan "$int_off")" || bad=1
+	"stamp='$stamp'; runs='$runs'; until_t='$until_t'" || bad=1
 exit $bad

@@ -11,7 +11,7 @@ implicit_init(struct implicit *im, const struct forces *fo, const unsigned char 
     double tol)
 {
 	size_t n3 = 3 * (size_t)fo->cl->n;
-	double **v[] = { &im->a, &im->b, &im->dv, &im->r, &im->z, &im->p, &im->q, &im->diag };
+	double **v[] = { &im->a, &im->b, &im->dv, &im->r, &im->z, &im->p, &im->q };
 	size_t i;
 
 	memset(im, 0, sizeof *im);
@@ -27,6 +27,7 @@ implicit_init(struct implicit *im, const struct forces *fo, const unsigned char 
 		if ((*v[i] = malloc(n3 * sizeof(double))) == NULL)
 			goto oom;
 	if ((im->cdir = malloc(3 * n3 * sizeof *im->cdir)) == NULL ||
+	    (im->pre = malloc(3 * n3 * sizeof *im->pre)) == NULL ||
 	    (im->ncon = calloc((size_t)fo->cl->n, 1)) == NULL)
 		goto oom;
 	return 0;
@@ -46,7 +47,7 @@ implicit_free(struct implicit *im)
 	free(im->z);
 	free(im->p);
 	free(im->q);
-	free(im->diag);
+	free(im->pre);
 	free(im->cdir);
 	free(im->ncon);
 	memset(im, 0, sizeof *im);
@@ -124,6 +125,39 @@ system_mul(const struct implicit *im, double h, const double *w, double *out)
 	filter(im, out);
 }
 
+/* b <- b^-1 for a symmetric positive definite 3 x 3 block (the cofactors
+ * over the determinant). */
+static void
+invert_spd3(double *b)
+{
+	double c0 = b[4] * b[8] - b[5] * b[7], c1 = b[5] * b[6] - b[3] * b[8];
+	double c2 = b[3] * b[7] - b[4] * b[6], det = b[0] * c0 + b[1] * c1 + b[2] * c2;
+	double r[9] = { c0, b[2] * b[7] - b[1] * b[8], b[1] * b[5] - b[2] * b[4],
+	    c1, b[0] * b[8] - b[2] * b[6], b[2] * b[3] - b[0] * b[5],
+	    c2, b[1] * b[6] - b[0] * b[7], b[0] * b[4] - b[1] * b[3] };
+	int i;
+
+	for (i = 0; i < 9; i++)
+		b[i] = r[i] / det;
+}
+
+/* z = P r, the filter applied after: a block can turn r off the
+ * constraints */
+static void
+precondition(const struct implicit *im, const double *r, double *z)
+{
+	int p, n = im->fo->cl->n;
+
+	for (p = 0; p < n; p++) {
+		const double *b = im->pre + 9 * p, *rp = r + 3 * p;
+
+		z[3 * p] = b[0] * rp[0] + b[1] * rp[1] + b[2] * rp[2];
+		z[3 * p + 1] = b[3] * rp[0] + b[4] * rp[1] + b[5] * rp[2];
+		z[3 * p + 2] = b[6] * rp[0] + b[7] * rp[1] + b[8] * rp[2];
+	}
+	filter(im, z);
+}
+
 static double
 dot(const double *a, const double *b, size_t n)
 {
@@ -153,19 +187,24 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	release(im, im->b);
 	filter(im, im->b);
 
-	memset(im->diag, 0, n3 * sizeof *im->diag);
-	jacobian_diag(&im->jc, h * h, h, im->diag);
-	for (i = 0; i < n3; i++)
-		im->diag[i] = 1 / (im->diag[i] + md * cl->mass[i / 3]);
+	/* block Jacobi: each node's 3 x 3 block of the system, inverted */
+	memset(im->pre, 0, 3 * n3 * sizeof *im->pre);
+	jacobian_block_diag(&im->jc, h * h, h, im->pre);
+	for (i = 0; i < (size_t)cl->n; i++) {
+		double *b = im->pre + 9 * i;
+
+		b[0] += md * cl->mass[i];
+		b[4] += md * cl->mass[i];
+		b[8] += md * cl->mass[i];
+		invert_spd3(b);
+	}
 
 	/* preconditioned CG from dv = 0 */
 	memset(im->dv, 0, n3 * sizeof *im->dv);
 	memcpy(im->r, im->b, n3 * sizeof *im->r);
 	bnorm2 = dot(im->b, im->b, n3);
 	stop2 = im->tol * im->tol * bnorm2;
-	for (i = 0; i < n3; i++)
-		im->z[i] = im->diag[i] * im->r[i];
-	filter(im, im->z);	/* a diagonal scaling can turn r off the constraints */
+	precondition(im, im->r, im->z);
 	memcpy(im->p, im->z, n3 * sizeof *im->p);
 	rz = dot(im->r, im->z, n3);
 	for (it = 0; it < im->max_iter && dot(im->r, im->r, n3) > stop2; it++) {
@@ -179,9 +218,8 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 		for (i = 0; i < n3; i++) {
 			im->dv[i] += alpha * im->p[i];
 			im->r[i] -= alpha * im->q[i];
-			im->z[i] = im->diag[i] * im->r[i];
 		}
-		filter(im, im->z);
+		precondition(im, im->r, im->z);
 		rz_new = dot(im->r, im->z, n3);
 		beta = rz_new / rz;
 		rz = rz_new;

@@ -4,8 +4,9 @@
  *   (M + h C + h^2 K) dv = h (f(x, v) - h K v),  v' = v + dv,  x' = x + h v',
  *
  * with K and C from jacobian.h, solved by conjugate gradients with a
- * diagonal preconditioner. Held nodes keep their velocity through the
- * solve (the caller puts them on their prescribed motion afterwards).
+ * block-diagonal (Jacobi) preconditioner. Held nodes keep their velocity
+ * through the solve (the caller puts them on their prescribed motion
+ * afterwards).
  *
  * A node resting on an obstacle is constrained (Baraff & Witkin's filter):
  * its velocity along the obstacle's normal does not change in the solve,
@@ -30,7 +31,8 @@ struct implicit {
 	struct jacobian jc;
 	double tol;			/* CG: |r| <= tol*|b| */
 	int max_iter;
-	double *a, *b, *dv, *r, *z, *p, *q, *diag;
+	double *a, *b, *dv, *r, *z, *p, *q;
+	double *pre;			/* per node: its 3 x 3 block of the system, inverted */
 	double *cdir;			/* per node: up to 3 orthonormal constrained directions */
 	unsigned char *ncon;		/* per node: how many */
 	long solves, iters;		/* so far */

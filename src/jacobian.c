@@ -146,23 +146,37 @@ jacobian_mul(const struct jacobian *jc, double ck, double cc, const double *p, d
 	}
 }
 
+/* b += s * u u^T */
+static void
+add_outer(double *b, vec3 u, double s)
+{
+	double a[3] = { u.x, u.y, u.z };
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			b[3 * i + j] += s * a[i] * a[j];
+}
+
 void
-jacobian_diag(const struct jacobian *jc, double ck, double cc, double *diag)
+jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blocks)
 {
 	const struct cloth *cl = jc->fo->cl;
 	double beta = cc * jc->fo->spring_damping;
 	size_t s;
-	int i;
+	int i, end;
 
 	for (s = 0; s < cl->nsprings; s++) {
 		const struct spring *sp = &cl->springs[s];
 		const double *e = jc->spring + 5 * s;
+		int node[2] = { sp->a, sp->b };
 
-		for (i = 0; i < 3; i++) {
-			double d = ck * e[4] + e[i] * e[i] * ((ck + beta) * e[3] - ck * e[4]);
+		for (end = 0; end < 2; end++) {
+			double *b = blocks + 9 * node[end];
 
-			diag[3 * sp->a + i] += d;
-			diag[3 * sp->b + i] += d;
+			for (i = 0; i < 3; i++)
+				b[4 * i] += ck * e[4];
+			add_outer(b, v3_load(e), (ck + beta) * e[3] - ck * e[4]);
 		}
 	}
 	for (s = 0; s < cl->ncorners; s++) {
@@ -170,25 +184,27 @@ jacobian_diag(const struct jacobian *jc, double ck, double cc, double *diag)
 		const double *e = jc->corner + 6 * s;
 		double k = ck * co->k;
 
-		for (i = 0; i < 3; i++) {
-			diag[3 * co->a + i] += k * e[i] * e[i];
-			diag[3 * co->b + i] += k * e[3 + i] * e[3 + i];
-			diag[3 * co->c + i] += k * (e[i] + e[3 + i]) * (e[i] + e[3 + i]);
-		}
+		add_outer(blocks + 9 * co->a, v3_load(e), k);
+		add_outer(blocks + 9 * co->b, v3_load(e + 3), k);
+		add_outer(blocks + 9 * co->c, v3_add(v3_load(e), v3_load(e + 3)), k);
 	}
 	for (s = 0; s < cl->nhinges; s++) {
 		const struct hinge *hg = &cl->hinges[s];
 		const double *e = jc->hinge + 10 * s;
 		double k = ck * hg->k;
+		vec3 z = v3(0, 0, 0), w[3][3];	/* w[node][axis]: J's columns */
+		int node[3] = { hg->a, hg->b, hg->c }, m, j;
 
 		for (i = 0; i < 3; i++) {
-			vec3 u = v3(i == 0, i == 1, i == 2), z = v3(0, 0, 0);
-			vec3 wa = hinge_dkb(e, v3_neg(u), z), wb = hinge_dkb(e, u, v3_neg(u));
-			vec3 wc = hinge_dkb(e, z, u);
+			vec3 u = v3(i == 0, i == 1, i == 2);
 
-			diag[3 * hg->a + i] += k * v3_dot(wa, wa);
-			diag[3 * hg->b + i] += k * v3_dot(wb, wb);
-			diag[3 * hg->c + i] += k * v3_dot(wc, wc);
+			w[0][i] = hinge_dkb(e, v3_neg(u), z);
+			w[1][i] = hinge_dkb(e, u, v3_neg(u));
+			w[2][i] = hinge_dkb(e, z, u);
 		}
+		for (m = 0; m < 3; m++)
+			for (i = 0; i < 3; i++)
+				for (j = 0; j < 3; j++)
+					blocks[9 * node[m] + 3 * i + j] += k * v3_dot(w[m][i], w[m][j]);
 	}
 }

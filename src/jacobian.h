@@ -33,7 +33,8 @@ void jacobian_eval(struct jacobian *jc, const double *x);
  * damping (fo->damping * M) is left to the caller, being diagonal. */
 void jacobian_mul(const struct jacobian *jc, double ck, double cc, const double *p, double *out);
 
-/* diag += the diagonal of ck*K + cc*C_springs (for a preconditioner). */
-void jacobian_diag(const struct jacobian *jc, double ck, double cc, double *diag);
+/* blocks += the 3 x 3 blocks on the diagonal of ck*K + cc*C_springs, one
+ * row-major block of 9 per node (for a preconditioner). */
+void jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blocks);
 
 #endif

@@ -263,12 +263,19 @@ energy_total(const struct energy *e)
 }
 
 double
-forces_max_load(const struct forces *fo)
+forces_load_speed(const struct forces *fo, double duration)
 {
 	double best = 0;
-	int l;
+	int l, k;
 
-	for (l = 0; l < fo->nloads; l++)
-		best += v3_len(v3_load(fo->loads[l].f));
+	for (l = 0; l < fo->nloads; l++) {
+		const struct load_group *lg = &fo->loads[l];
+		double m = INFINITY, t = fmin(lg->stop, duration) - fmax(lg->start, 0);
+
+		for (k = 0; k < lg->n; k++)
+			m = fmin(m, fo->cl->mass[lg->node[k]]);
+		if (t > 0)
+			best += v3_len(v3_load(lg->f)) / m * t;
+	}
 	return best;
 }

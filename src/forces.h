@@ -38,8 +38,9 @@ void forces_energy(const struct forces *fo, double t, const double *x, const dou
     struct energy *e);
 double energy_total(const struct energy *e);
 
-/* The sum of every load set's per-node force, in N: a scale for the
- * blow-up limit, not a bound. */
-double forces_max_load(const struct forces *fo);
+/* The speed the loads could give a node on its own over the run's first
+ * `duration` seconds (each set's force over its lightest node's mass, for
+ * as long as it acts), in m/s: a scale for the speeds a run reaches. */
+double forces_load_speed(const struct forces *fo, double duration);
 
 #endif

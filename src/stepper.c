@@ -48,7 +48,7 @@ int
 stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 {
 	size_t n3;
-	double extent, vscale, mass = 0, tol;
+	double extent, vscale, tol;
 	int p;
 
 	memset(st, 0, sizeof *st);
@@ -78,14 +78,12 @@ stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err)
 	st->omega = cloth_omega_bound(&st->cl);
 
 	/* Speeds a run can reach without blowing up: falling over the cloth's
-	 * size, prescribed motion, loads acting all run long; 1000 times that
-	 * is a runaway. */
-	for (p = 0; p < st->cl.n; p++)
-		mass += st->cl.mass[p];
+	 * size, prescribed motion, loads while they act; 1000 times that is a
+	 * runaway. */
 	extent = st->cl.h * hypot(st->cl.nu - 1, st->cl.nv - 1);
 	vscale = 1 + sqrt(2 * v3_len(v3_load(sc->gravity)) * extent) +
 	    v3_len(v3_load(sc->velocity)) + prescribed_max_speed(&st->pr) +
-	    forces_max_load(&st->fo) * (double)st->cl.n / mass * sc->duration;
+	    forces_load_speed(&st->fo, sc->duration);
 	st->v_limit = 1000 * vscale;
 
 	st->dt_auto = sc->dt == 0;

@@ -229,7 +229,7 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	im->solves++;
 	im->iters += it;
 	im->last_iters = it;
-	if (it == im->max_iter && dot(im->r, im->r, n3) > stop2)
+	if (dot(im->r, im->r, n3) > stop2)	/* out of iterations, or p went flat */
 		im->unconverged++;
 
 	memset(im->ncon, 0, (size_t)cl->n);

@@ -36,7 +36,7 @@ struct implicit {
 	double *cdir;			/* per node: up to 3 orthonormal constrained directions */
 	unsigned char *ncon;		/* per node: how many */
 	long solves, iters;		/* so far */
-	long unconverged;		/* solves that hit max_iter */
+	long unconverged;		/* solves that ended above the tolerance */
 	int last_iters;
 };
 

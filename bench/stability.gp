@@ -14,7 +14,8 @@
 # stability.csv columns: 1 factor, 2 omega_rad_s, 3 damping_per_s, 4 method,
 # 5 status, 6 dt_stable_s, 7 dt_unstable_s, 8 dt_theory_s,
 # 9 stable_over_theory, 10 stable_times_omega, 11 probes, 12 until_s,
-# 13 cap_s, 14 cg_iters, 15 unconverged, 16 unconverged_all, 17 result
+# 13 cap_s, 14 cg_iters, 15 unconverged, 16 unconverged_all, 17 energy_J,
+# 18 dt_smallest_s, 19 energy_smallest_J, 20 result
 
 if (!exists("csvf")) csvf = "stability.csv"
 if (!exists("outf")) outf = "stability.png"

@@ -22,7 +22,9 @@
 # bisects between the last stable and the first that blows up, if one does;
 # if none does, it is written "above": no limit found up to T. The CG
 # counts of its largest stable probe (iterations a solve, unconverged
-# solves; the scene's tolerance) are in the CSV.
+# solves; the scene's tolerance) are in the CSV, with the total energy at T
+# of that run and of the smallest step scanned: a run that does not blow up
+# (drape's check is on the speed) may still end far off.
 #
 # Data go to $BENCH_RESULTS/stability.csv; with gnuplot, the chart to
 # stability.png and a text chart on stdout. See bench/README.md.
@@ -105,6 +107,12 @@ probe() {
 	esac
 }
 
+# energy_of SUMMARY: the total energy (J) at the end, "-" if no summary
+energy_of() {
+	[ -f "$1" ] || { echo -; return; }
+	awk '/^energy / { e = $2 } END { print (e == "" ? "-" : e) }' "$1"
+}
+
 # cg_of SUMMARY iters|unconverged: from implicit-euler's "steps N (N solves,
 # M CG iterations each, K unconverged)"; "-" (iters) or 0 for the others
 cg_of() {
@@ -126,7 +134,7 @@ echo "scene $scene_name (damping c = $damping /s), stretch moduli times $factors
 echo
 
 csv=$out/stability.csv
-echo "factor,omega_rad_s,damping_per_s,method,status,dt_stable_s,dt_unstable_s,dt_theory_s,stable_over_theory,stable_times_omega,probes,until_s,cap_s,cg_iters,unconverged,unconverged_all,result" >"$csv"
+echo "factor,omega_rad_s,damping_per_s,method,status,dt_stable_s,dt_unstable_s,dt_theory_s,stable_over_theory,stable_times_omega,probes,until_s,cap_s,cg_iters,unconverged,unconverged_all,energy_J,dt_smallest_s,energy_smallest_J,result" >"$csv"
 hdr='%7s %11s %-16s %-6s %12s %12s %12s %9s %8s %6s %s\n'
 printf "$hdr" factor omega method status 'stable dt' 'unstable dt' 'theory dt' meas/th 'dt*omega' probes ''
 tol=$(awk '/^[ \t]*tolerance[ \t]*=/ { v = $0; sub(/^[^=]*=[ \t]*/, "", v); sub(/[ \t#].*/, "", v); print v; f = 1 } END { if (!f) print "default" }' "$src")
@@ -152,7 +160,8 @@ for s in $factors; do
 		fi
 		cap=$hi
 		n=0 status=ok unc_all=0
-		rm -f "$tmp/stable.out"
+		rm -f "$tmp/stable.out" "$tmp/smallest.out"
+		dsmall=-
 		[ -t 2 ] && printf '\r  factor %s %s ...          ' "$s" "$m" >&2
 		if [ $m = implicit-euler ]; then
 			# the scan, from the smallest step up: T / 10^(k/2) >= 1 / omega
@@ -163,6 +172,7 @@ for s in $factors; do
 			for d in $scan; do
 				n=$((n + 1))
 				if probe "$f" "$m" "$d"; then lo=$d; else hi=$d status=ok; break; fi
+				if [ $n = 1 ]; then cp "$tmp/stable.out" "$tmp/smallest.out"; dsmall=$d; fi
 			done
 			if [ $status = ok ] && [ "$lo" = - ]; then
 				# the smallest of the scan blew up: search below it
@@ -201,15 +211,16 @@ for s in $factors; do
 			cgi=$(cg_of "$tmp/stable.out" iters) unc=$(cg_of "$tmp/stable.out" unconverged)
 		fi
 		[ $m = implicit-euler ] || unc_all=-
+		en=$(energy_of "$tmp/stable.out") ensmall=$(energy_of "$tmp/smallest.out")
 		case $status in
 		ok) result=$(printf '%.3e s' "$lo") ;;
 		below) result=$(printf 'below %.3g s' "$hi") ;;
 		above) result=$(printf 'no limit found up to %.3g s' "$cap") ;;
 		esac
-		echo "$s,$omega,$damping,$m,$status,$lo,$hi,$th,$ratio,$dw,$n,$until_t,$cap,$cgi,$unc,$unc_all,$result" >>"$csv"
+		echo "$s,$omega,$damping,$m,$status,$lo,$hi,$th,$ratio,$dw,$n,$until_t,$cap,$cgi,$unc,$unc_all,$en,$dsmall,$ensmall,$result" >>"$csv"
 		note=
 		[ $status = above ] && note="$result"
-		[ $m = implicit-euler ] && note="${note:+$note; }CG at the largest stable dt: $cgi it./solve, $unc unconverged ($unc_all over all probes)"
+		[ $m = implicit-euler ] && note="${note:+$note; }at the largest stable dt: $cgi CG it./solve, $unc unconverged ($unc_all over all probes), energy at T $en J ($ensmall J at dt $dsmall)"
 		[ -t 2 ] && printf '\r%60s\r' '' >&2
 		printf "$hdr" "$s" "$omega" "$m" "$status" "$lo" "$hi" "$th" "$ratio" "$dw" "$n" "$note"
 	done
@@ -223,7 +234,10 @@ stable dt: the largest step found that ran T = $until_t s without blowing up;
 theory dt: rk4 2 sqrt(2) / omega, symplectic-euler 2 / omega, euler c / omega^2,
   rk2 (4 c)^(1/3) / omega^(4/3), omega the Gershgorin bound, c = $damping /s;
   implicit-euler: any dt (for a linear system). It is searched up to T,
-  probing T / 10^(k/2) from the smallest >= 1 / omega up (CG tolerance: $tol).
+  probing T / 10^(k/2) from the smallest >= 1 / omega up (CG tolerance: $tol);
+  energy at T: the total energy at the end of the run at the largest stable dt,
+  and of the smallest dt scanned (drape's blow-up check is on the speed: a run
+  that does not blow up may still end far off).
 meas/th: stable dt over theory dt; dt*omega: the stable dt times omega.
 dopri5 is not searched: its step is adaptive (--dt is only its first and
   largest step) and its error control rejects the steps that would blow up.

@@ -58,13 +58,14 @@ dopri_dt=${BENCH_WP_DOPRI_DT:-1e-3}
 # it ends where the explicit methods' list ends.
 ifactors=${BENCH_WP_IMPLICIT_FACTORS:-1024 512 256 128 64 32 16 8 4 2 1 0.5 0.25 0.125 0.0625}
 # Its CG tolerances (the residual relative to the right-hand side). 1e-8
-# is tight enough for the solve's error not to show: on both scenes, over
-# the whole list of steps, 1e-6, 1e-8 and 1e-10 gave the same error to 3-4
-# digits, while the default, 1e-3, moved it by up to 45 % at the smallest
-# steps on the cantilever (5 % on the strip); so the 1e-8 line is the
-# method's own error, at 1.2-2.3x the CPU time of 1e-3. 1e-3 is run too: it
-# is what a run gets unless its scene sets `tolerance`, and where the
-# step's own error is large it gives the same error for less.
+# is tight enough for the solve's error not to show: in a trial at every
+# other factor of the list (1024, 256, ... 1/16), 1e-6, 1e-8 and 1e-10 gave
+# the same error to 3-4 digits on both scenes; so the 1e-8 line is the
+# method's own error. 1e-3 is run too: it is the default (what a run gets
+# unless its scene sets `tolerance`); it gives 1e-8's error to 5 % from
+# dt * omega = 1/2 up, for the same or up to 2.2x less CPU time, but below
+# that on the cantilever its error is up to 1.9x 1e-8's: there the solve's
+# error shows (results/workprec.csv of 2026-12-01, bench/README.md).
 itols=${BENCH_WP_IMPLICIT_TOLS:-1e-8 1e-3}
 ref_f=${BENCH_WP_REF:-0.015625}
 maxsteps=${BENCH_WP_MAXSTEPS:-1e6}

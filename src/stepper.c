@@ -123,12 +123,16 @@ stepper_done(const struct stepper *st)
 	return st->t >= st->t_end;
 }
 
-/* The first node (lowest number) that is not finite or too fast. */
+#define TORN 10	/* a spring this many times its rest length has torn */
+
+/* The first node (lowest number) that is not finite or too fast, else the
+ * first end of the first torn spring. */
 static int
 find_blowup(const struct stepper *st, const double *y, char *why, size_t len)
 {
 	size_t n3 = 3 * (size_t)st->cl.n;
 	double lim2 = st->v_limit * st->v_limit;
+	size_t s;
 	int p;
 
 	for (p = 0; p < st->cl.n; p++) {
@@ -143,6 +147,19 @@ find_blowup(const struct stepper *st, const double *y, char *why, size_t len)
 			snprintf(why, len, "runaway energy: it moves at %.3g m/s, over the %.3g m/s "
 			    "this scene can reach", sqrt(v2), st->v_limit);
 			return p;
+		}
+	}
+	/* A step too long for its method can also end slow but torn apart
+	 * (implicit Euler's one linear solve at a step of seconds): no cloth
+	 * stretches a yarn segment to ten times its length. */
+	for (s = 0; s < st->cl.nsprings; s++) {
+		const struct spring *sp = &st->cl.springs[s];
+		vec3 d = v3_sub(v3_load(y + 3 * sp->b), v3_load(y + 3 * sp->a));
+
+		if (v3_dot(d, d) > TORN * TORN * sp->rest * sp->rest) {
+			snprintf(why, len, "the network tore: its spring to node %d is %.3g times its "
+			    "rest length", sp->b, v3_len(d) / sp->rest);
+			return sp->a;
 		}
 	}
 	return -1;

@@ -24,7 +24,8 @@
 # counts of its largest stable probe (iterations a solve, unconverged
 # solves; the scene's tolerance) are in the CSV, with the total energy at T
 # of that run and of the smallest step scanned: a run that does not blow up
-# (drape's check is on the speed) may still end far off.
+# (drape's check is on the speed and on springs torn past ten times their
+# length) may still end far off.
 #
 # Data go to $BENCH_RESULTS/stability.csv; with gnuplot, the chart to
 # stability.png and a text chart on stdout. See bench/README.md.
@@ -236,8 +237,9 @@ theory dt: rk4 2 sqrt(2) / omega, symplectic-euler 2 / omega, euler c / omega^2,
   implicit-euler: any dt (for a linear system). It is searched up to T,
   probing T / 10^(k/2) from the smallest >= 1 / omega up (CG tolerance: $tol);
   energy at T: the total energy at the end of the run at the largest stable dt,
-  and of the smallest dt scanned (drape's blow-up check is on the speed: a run
-  that does not blow up may still end far off).
+  and of the smallest dt scanned (drape's blow-up check is on the speed and on
+  springs torn past 10x their length: a run that does not blow up may still
+  end far off).
 meas/th: stable dt over theory dt; dt*omega: the stable dt times omega.
 dopri5 is not searched: its step is adaptive (--dt is only its first and
   largest step) and its error control rejects the steps that would blow up.

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "ccd.h"
+#include "clock.h"
 #include "cmd.h"
 #include "narrow.h"
 
@@ -42,15 +43,6 @@ ccd_usage(FILE *f)
 	    "continuous test; seed is the chapter's node-triangle test, with\n"
 	    "--inside choosing its angle-sum (default) or crossing test. The kind\n"
 	    "is vertex-face or edge-edge as the path says, unless --kind is given.\n", f);
-}
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* One row: 7 integers, the numerators and denominators read by strtod
@@ -199,9 +191,9 @@ report(const struct qfile *qf, enum method m, enum inside_test how)
 	for (i = 0; i < qf->n; i++)
 		truth += qf->q[i].truth != 0;
 	/* the first pass counts; repeats only make the rate meaningful */
-	t0 = now();
+	t0 = clock_seconds();
 	pos = pass(qf, m, how, &tp);
-	for (runs = 1; (dt = now() - t0) < MIN_TIME && qf->n > 0; runs++)
+	for (runs = 1; (dt = clock_seconds() - t0) < MIN_TIME && qf->n > 0; runs++)
 		(void)pass(qf, m, how, &tp2);
 	printf("%s\t%s\t%zu\t%zu\t%zu\t%zu\t%zu\t%.0f\n", qf->path, name, qf->n, pos, tp,
 	    truth - tp, pos - tp, dt > 0 ? (double)(runs * qf->n) / dt : 0);

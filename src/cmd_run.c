@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "config.h"
+#include "clock.h"
 #include "cmd.h"
 #include "obj.h"
 #include "record.h"
@@ -50,15 +51,6 @@ catch_signals(void)
 	sigemptyset(&sa.sa_mask);
 	sigaction(SIGINT, &sa, NULL);
 	sigaction(SIGTERM, &sa, NULL);
-}
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static void
@@ -573,7 +565,7 @@ cmd_run(int argc, char **argv)
 
 	catch_signals();
 	memset(&ht, 0, sizeof ht);
-	t0 = last = now();
+	t0 = last = clock_seconds();
 	while (!stepper_done(&st) && !interrupted) {
 		if (stepper_step(&st, &bl) != 0) {
 			if (tty)
@@ -596,8 +588,8 @@ cmd_run(int argc, char **argv)
 			rc = EXIT_RUNTIME;
 			break;
 		}
-		if (tty && (st.step & 255) == 0 && now() - last > 0.25) {
-			last = now();
+		if (tty && (st.step & 255) == 0 && clock_seconds() - last > 0.25) {
+			last = clock_seconds();
 			progress(&st, last - t0);
 		}
 	}
@@ -613,7 +605,7 @@ cmd_run(int argc, char **argv)
 		if (rc == EXIT_OK)
 			rc = EXIT_RUNTIME;
 	}
-	summary(&st, now() - t0, &ht);
+	summary(&st, clock_seconds() - t0, &ht);
 done:
 	if (rc == EXIT_OK)
 		rc = write_final(&st, final_obj);

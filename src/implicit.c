@@ -175,7 +175,7 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	const struct cloth *cl = im->fo->cl;
 	size_t i, n3 = 3 * (size_t)cl->n;
 	const double *x = y, *v = y + n3;
-	double md = 1 + h * im->fo->damping, bnorm2, rz, stop2;
+	double md = 1 + h * im->fo->damping, rr, rz, stop2;
 	int it;
 
 	/* b = h (f - h K v) */
@@ -202,12 +202,12 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	/* preconditioned CG from dv = 0 */
 	memset(im->dv, 0, n3 * sizeof *im->dv);
 	memcpy(im->r, im->b, n3 * sizeof *im->r);
-	bnorm2 = dot(im->b, im->b, n3);
-	stop2 = im->tol * im->tol * bnorm2;
+	rr = dot(im->b, im->b, n3);
+	stop2 = im->tol * im->tol * rr;
 	precondition(im, im->r, im->z);
 	memcpy(im->p, im->z, n3 * sizeof *im->p);
 	rz = dot(im->r, im->z, n3);
-	for (it = 0; it < im->max_iter && dot(im->r, im->r, n3) > stop2; it++) {
+	for (it = 0; it < im->max_iter && rr > stop2; it++) {
 		double pq, alpha, rz_new, beta;
 
 		system_mul(im, h, im->p, im->q);
@@ -215,9 +215,10 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 		if (!(pq > 0))
 			break;	/* p is 0 (solved) or the system lost definiteness */
 		alpha = rz / pq;
-		for (i = 0; i < n3; i++) {
+		for (i = 0, rr = 0; i < n3; i++) {
 			im->dv[i] += alpha * im->p[i];
 			im->r[i] -= alpha * im->q[i];
+			rr += im->r[i] * im->r[i];
 		}
 		precondition(im, im->r, im->z);
 		rz_new = dot(im->r, im->z, n3);
@@ -229,7 +230,7 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	im->solves++;
 	im->iters += it;
 	im->last_iters = it;
-	if (dot(im->r, im->r, n3) > stop2)	/* out of iterations, or p went flat */
+	if (rr > stop2)		/* out of iterations, or p went flat */
 		im->unconverged++;
 
 	memset(im->ncon, 0, (size_t)cl->n);

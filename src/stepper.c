@@ -125,14 +125,12 @@ stepper_done(const struct stepper *st)
 
 #define TORN 10	/* a spring this many times its rest length has torn */
 
-/* The first node (lowest number) that is not finite or too fast, else the
- * first end of the first torn spring. */
+/* The first node (lowest number) that is not finite or too fast. */
 static int
 find_blowup(const struct stepper *st, const double *y, char *why, size_t len)
 {
 	size_t n3 = 3 * (size_t)st->cl.n;
 	double lim2 = st->v_limit * st->v_limit;
-	size_t s;
 	int p;
 
 	for (p = 0; p < st->cl.n; p++) {
@@ -149,9 +147,18 @@ find_blowup(const struct stepper *st, const double *y, char *why, size_t len)
 			return p;
 		}
 	}
-	/* A step too long for its method can also end slow but torn apart
-	 * (implicit Euler's one linear solve at a step of seconds): no cloth
-	 * stretches a yarn segment to ten times its length. */
+	return -1;
+}
+
+/* A step too long for its method can also end slow but torn apart
+ * (implicit Euler's one linear solve at a step of seconds): no cloth
+ * stretches a yarn segment to ten times its length. Returns the first end
+ * of the first torn spring, or -1. */
+static int
+find_torn(const struct stepper *st, const double *y, char *why, size_t len)
+{
+	size_t s;
+
 	for (s = 0; s < st->cl.nsprings; s++) {
 		const struct spring *sp = &st->cl.springs[s];
 		vec3 d = v3_sub(v3_load(y + 3 * sp->b), v3_load(y + 3 * sp->a));
@@ -254,7 +261,8 @@ stepper_step(struct stepper *st, struct blowup *bl)
 		return 1;
 	}
 	/* 4. blow-up check before anything is committed */
-	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0)
+	if ((bad = find_blowup(st, st->y_next, bl->why, sizeof bl->why)) >= 0 ||
+	    (bad = find_torn(st, st->y_next, bl->why, sizeof bl->why)) >= 0)
 		return blown_up(st, bl, bad);
 	/* 5. commit */
 	swap = st->y;

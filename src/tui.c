@@ -11,6 +11,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "clock.h"
 #include "evlog.h"
 #include "raster.h"
 #include "screen.h"
@@ -57,15 +58,6 @@ struct tui {
 	char msg[300];
 	struct tui_result *res;
 };
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void
 say(struct tui *ui, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -144,17 +136,17 @@ step_once(struct tui *ui)
 static void
 run_frame(struct tui *ui, double budget)
 {
-	double start = now(), t;
+	double start = clock_seconds(), t;
 	long k;
 	struct source_state s;
 
 	for (k = 0; k < ui->spf && ui->running; k++) {
 		if (!step_once(ui))
 			break;
-		if (now() - start > budget || quit_signal)
+		if (clock_seconds() - start > budget || quit_signal)
 			break;
 	}
-	t = now();
+	t = clock_seconds();
 	ui->src->state(ui->src->ctx, &s);
 	if (t - ui->mark_wall >= 0.5) {
 		ui->speed = (s.t - ui->mark_t) / (t - ui->mark_wall);
@@ -168,7 +160,7 @@ static void
 seek_event(struct tui *ui)
 {
 	long before = ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
-	double start = now();
+	double start = clock_seconds();
 	long steps = 0;
 	const char *unit = ui->replay ? "frames" : "steps";	/* a replay steps by frames */
 	struct source_state s;
@@ -177,7 +169,7 @@ seek_event(struct tui *ui)
 		return;
 	ui->running = false;
 	while (ui->log.count[ui->selected] == before && !quit_signal &&
-	    now() - start < EVENT_SEEK_WALL && step_once(ui))
+	    clock_seconds() - start < EVENT_SEEK_WALL && step_once(ui))
 		steps++;
 	ui->src->state(ui->src->ctx, &s);
 	if (ui->log.count[ui->selected] > before)
@@ -340,7 +332,7 @@ key(struct tui *ui, int ch)
 		ui->running = !ui->running && !ui->ended && !ui->res->blown_up;
 		if (ui->replay && ui->ended)
 			say(ui, "end of the replay (Home goes back to the first step)");
-		ui->mark_wall = now();
+		ui->mark_wall = clock_seconds();
 		ui->mark_t = s.t;
 		break;
 	case 'n':
@@ -616,11 +608,11 @@ colours(struct tui *ui)
 static void
 loop(struct tui *ui)
 {
-	double period = 0.1 * ui->opt.delay, next = now();
+	double period = 0.1 * ui->opt.delay, next = clock_seconds();
 	int ch;
 
 	while (!ui->quit && !quit_signal) {
-		double t = now();
+		double t = clock_seconds();
 
 		if (ui->running && t >= next) {
 			run_frame(ui, BUSY_FRACTION * period);
@@ -642,7 +634,7 @@ loop(struct tui *ui)
 			}
 			ui->dirty = false;
 		}
-		t = now();
+		t = clock_seconds();
 		timeout(ui->running ? (int)fmax(0, ceil(1000 * (next - t))) : 250);
 		if ((ch = getch()) == ERR)
 			continue;
@@ -686,7 +678,7 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 		return;
 	}
 	reset_camera(&ui);
-	ui.mark_wall = now();
+	ui.mark_wall = clock_seconds();
 	ui.mark_t = s.t;
 
 	/* ours before ncurses', which then leaves them alone */

@@ -10,7 +10,6 @@ srcdir=${BENCH_SRCDIR:-$(cd "$here/.." && pwd)}
 drape=${DRAPE:-$srcdir/src/drape}
 results=${BENCH_RESULTS:-$srcdir/bench/results}
 runs=${BENCH_RUNS:-3}
-gnuplot=${GNUPLOT:-gnuplot}
 
 die() { echo "$prog: $*" >&2; exit 2; }
 case $runs in '' | *[!0-9]* | 0) die "BENCH_RUNS must be a whole number > 0, not '$runs'" ;; esac
@@ -137,20 +136,4 @@ median() { # numbers on stdin, one a line, "-" skipped; prints "-" if none
 	}'
 }
 
-# plot GP CSV PNG 'var=value; ...': the PNG, then the same chart on the
-# dumb terminal to stdout
-plot() {
-	local gp=$1 csv=$2 png=$3 vars=$4
-	if ! command -v "$gnuplot" >/dev/null 2>&1; then
-		echo "gnuplot not found: no chart (sudo apt-get install -y gnuplot-nox); the figures above are the result."
-		return 0
-	fi
-	if "$gnuplot" -e "csv='$csv'; term='png'; outf='$png'; $vars" "$here/$gp" 2>"$tmp/gp.err" &&
-		"$gnuplot" -e "csv='$csv'; term='dumb'; $vars" "$here/$gp" 2>>"$tmp/gp.err"; then
-		echo "chart: $png"
-	else
-		echo "$prog: gnuplot failed:" >&2
-		cat "$tmp/gp.err" >&2
-		return 1
-	fi
-}
+. "$here/plot.sh"

@@ -1,4 +1,4 @@
-# Chart of bench/position.sh's energies (position.csv): gnuplot -e "datf=...;
+# Chart of bench/position.sh's energies (position.csv): gnuplot -e "csv=...;
 # outf=...; term='png'|'dumb'; pols='keep q ref'; stamp=..." position.gp
 #
 # Total energy of the strip against time, one line per position policy;
@@ -7,7 +7,7 @@
 # position.csv columns: 1 policy, 2 broad, 3 narrow, 4 position, 5 t_s,
 # 6 status (ok or blowup), 7 energy_J, 8 kinetic_J, 9 wall_s.
 
-if (!exists("datf")) datf = "position.csv"
+if (!exists("csv")) csv = "position.csv"
 if (!exists("outf")) outf = "position.png"
 if (!exists("term")) term = "png"
 if (!exists("pols")) pols = "keep q ref"
@@ -25,7 +25,7 @@ if (term eq "dumb") {
 np = words(pols)
 label(p) = p eq "keep" ? "seed/seed/keep" : p eq "q" ? "seed/seed/q" : p eq "slide" ? "seed/seed/slide" : "grid/ccd/slide (shipped)"
 # the policy's rows with status st ("ok|blowup": the line runs to the blow-up)
-rows(p, st) = sprintf("< awk -F, 'NR > 1 && $1 == \"%s\" && $6 ~ /^(%s)$/ && $7 != \"-\"' '%s' | sort -t, -k5,5g", p, st, datf)
+rows(p, st) = sprintf("< awk -F, 'NR > 1 && $1 == \"%s\" && $6 ~ /^(%s)$/ && $7 != \"-\"' '%s' | sort -t, -k5,5g", p, st, csv)
 set title sprintf("drape strip (Fig. 11): total energy by position policy (%s)", stamp)
 set xlabel "simulated time (s)"
 set ylabel "total energy (J, log)"

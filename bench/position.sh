@@ -134,16 +134,7 @@ energy: the summary's total (kinetic + gravity + stretch + shear + bend +
 data: $datf
 EOF
 
-gnuplot=${GNUPLOT:-gnuplot}
-if command -v "$gnuplot" >/dev/null 2>&1; then
-	for term in png dumb; do
-		"$gnuplot" -e "datf='$datf'; outf='$out/position.png'; term='$term'; pols='$policies'; stamp='$stamp'" \
-			"$here/position.gp" 2>"$tmp/gp.err" || {
-			echo "position.sh: gnuplot failed ($term):" >&2; cat "$tmp/gp.err" >&2; bad=1
-		}
-	done
-	echo "chart: $out/position.png"
-else
-	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
-fi
+prog=position.sh
+. "$here/plot.sh"
+plot position.gp "$datf" "$out/position.png" "pols='$policies'; stamp='$stamp'" || bad=1
 exit $bad

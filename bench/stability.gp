@@ -1,6 +1,6 @@
-# Chart of bench/stability.sh's results (stability.csv): gnuplot -e "csvf=...;
-# outf=...; stamp=...; until_t=...; scene=...; damping=..." stability.gp
-# outf = '' draws it as text on stdout (set terminal dumb) instead of a PNG.
+# Chart of bench/stability.sh's results (stability.csv): gnuplot -e "csv=...;
+# term='png'|'dumb'; outf=...; stamp=...; until_t=...; scene=...; damping=..." stability.gp
+# term = 'dumb' draws it as text on stdout instead of the PNG outf.
 #
 # Largest stable dt against the stiffness factor, log-log: measured points
 # (bisection on blow-up within until_t) joined by solid lines, the theory
@@ -17,8 +17,9 @@
 # 13 cap_s, 14 cg_iters, 15 unconverged, 16 unconverged_all, 17 energy_J,
 # 18 dt_smallest_s, 19 energy_smallest_J, 20 result
 
-if (!exists("csvf")) csvf = "stability.csv"
+if (!exists("csv")) csv = "stability.csv"
 if (!exists("outf")) outf = "stability.png"
+if (!exists("term")) term = "png"
 if (!exists("stamp")) stamp = ""
 if (!exists("until_t")) until_t = "?"
 if (!exists("scene")) scene = "?"
@@ -32,7 +33,7 @@ array thname[4] = ["c/omega^2", "2/omega", "(4c)^{1/3}/omega^{4/3}", "2 sqrt(2)/
 T = until_t + 0
 if (T > 0) set yrange [*:4 * T]
 
-sel(m, st, cols) = sprintf("< awk -F, '$4 == \"%s\" && $5 ~ /%s/ { print %s }' '%s'", m, st, cols, csvf)
+sel(m, st, cols) = sprintf("< awk -F, '$4 == \"%s\" && $5 ~ /%s/ { print %s }' '%s'", m, st, cols, csv)
 
 set logscale xy
 set grid xtics ytics mytics
@@ -41,7 +42,7 @@ set ylabel "largest stable dt (s)"
 set xtics (1, 4, 16, 64, 256)
 set xrange [0.7:370]
 
-if (outf eq "") {
+if (term eq "dumb") {
 	set terminal dumb size 100,34
 	set format y "%.0e"
 	set title sprintf("largest stable dt, %s, T = %s s (points: measured, lines: theory)", scene, until_t)

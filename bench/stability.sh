@@ -246,19 +246,8 @@ dopri5 is not searched: its step is adaptive (--dt is only its first and
 data: $csv
 EOF
 
-gnuplot=${GNUPLOT:-gnuplot}
-if command -v "$gnuplot" >/dev/null 2>&1; then
-	args="csvf='$csv'; stamp='$stamp'; until_t='$until_t'; scene='$scene_name'; damping='$damping'"
-	if "$gnuplot" -e "$args; outf='$out/stability.png'" "$here/stability.gp" 2>"$tmp/gp.err" &&
-		"$gnuplot" -e "$args; outf=''" "$here/stability.gp" 2>>"$tmp/gp.err"; then
-		echo "chart: $out/stability.png"
-	else
-		echo "stability.sh: gnuplot failed, no chart:" >&2
-		cat "$tmp/gp.err" >&2
-		exit 1
-	fi
-else
-	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
-	echo "  To draw $out/stability.png, install it:  sudo apt-get install -y gnuplot-nox"
-fi
+prog=stability.sh
+. "$here/plot.sh"
+plot stability.gp "$csv" "$out/stability.png" \
+	"stamp='$stamp'; until_t='$until_t'; scene='$scene_name'; damping='$damping'" || exit 1
 exit 0

@@ -1,4 +1,4 @@
-# Chart of bench/tunnel.sh's rates (tunnel.csv): gnuplot -e "datf=...;
+# Chart of bench/tunnel.sh's rates (tunnel.csv): gnuplot -e "csv=...;
 # outf=...; term='png'|'dumb'; noff=...; position=...; stamp=..." tunnel.gp
 #
 # Tunnelling rate (share of the cloth's nodes that ended beyond the plate)
@@ -6,7 +6,7 @@
 # tunnel.csv columns: 1 ratio, 2 v_m_s, 3 broad, 4 narrow, 5 runs,
 # 6 blowups, 7 runs_with_tunnelling, 8 nodes_through, 9 nodes_shot, 10 rate.
 
-if (!exists("datf")) datf = "tunnel.csv"
+if (!exists("csv")) csv = "tunnel.csv"
 if (!exists("outf")) outf = "tunnel.png"
 if (!exists("term")) term = "png"
 if (!exists("noff")) noff = "?"
@@ -35,7 +35,7 @@ combos = "seed/seed seed/ccd grid/seed grid/ccd"
 array col[4] = ["#d62728", "#ff7f0e", "#1f77b4", "#2ca02c"]
 array pt[4] = [7, 5, 9, 13]
 # one combination's rows, in ratio order (a filter, so that the lines join)
-rows(c) = sprintf("< awk -F, 'NR > 1 && $3 \"/\" $4 == \"%s\" && $10 != \"-\"' '%s' | sort -t, -k1,1g", word(combos, c), datf)
+rows(c) = sprintf("< awk -F, 'NR > 1 && $3 \"/\" $4 == \"%s\" && $10 != \"-\"' '%s' | sort -t, -k1,1g", word(combos, c), csv)
 if (term eq "dumb") {
 	plot for [c = 1:4] rows(c) using 1:(100 * $10) with linespoints pt (c + 0) title word(combos, c)
 } else {

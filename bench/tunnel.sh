@@ -187,16 +187,7 @@ columns: broad/narrow phase; figures: tunnelling rate, the share of the
 data: $datf (per ratio), $runf (every run)
 EOF
 
-gnuplot=${GNUPLOT:-gnuplot}
-if command -v "$gnuplot" >/dev/null 2>&1; then
-	for term in png dumb; do
-		"$gnuplot" -e "datf='$datf'; outf='$out/tunnel.png'; term='$term'; noff='$noff'; position='$position'; stamp='$stamp'" \
-			"$here/tunnel.gp" 2>"$tmp/gp.err" || {
-			echo "tunnel.sh: gnuplot failed ($term):" >&2; cat "$tmp/gp.err" >&2; bad=1
-		}
-	done
-	echo "chart: $out/tunnel.png"
-else
-	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
-fi
+prog=tunnel.sh
+. "$here/plot.sh"
+plot tunnel.gp "$datf" "$out/tunnel.png" "noff='$noff'; position='$position'; stamp='$stamp'" || bad=1
 exit $bad

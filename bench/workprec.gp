@@ -1,6 +1,6 @@
-# Chart of bench/workprec.sh's points (workprec.csv): gnuplot -e "csvf=...;
-# outf=...; scenes=...; runs=...; stamp=...; ncpu=...; itols=..." workprec.gp
-# outf = '' draws it as text on stdout (set terminal dumb) instead of a PNG.
+# Chart of bench/workprec.sh's points (workprec.csv): gnuplot -e "csv=...;
+# term='png'|'dumb'; outf=...; scenes=...; runs=...; stamp=...; ncpu=...; itols=..." workprec.gp
+# term = 'dumb' draws it as text on stdout instead of the PNG outf.
 #
 # One panel per scene: error against the reference (max node distance, m)
 # against CPU seconds, log-log, one line per method (implicit-euler: one per
@@ -12,8 +12,9 @@
 # 11 wall_s, 12 steps, 13 force_evals, 14 error_m, 15 dt_omega, 16 reps,
 # 17 cg_iters, 18 unconverged
 
-if (!exists("csvf")) csvf = "workprec.csv"
+if (!exists("csv")) csv = "workprec.csv"
 if (!exists("outf")) outf = "workprec.png"
+if (!exists("term")) term = "png"
 if (!exists("scenes")) scenes = "hanging cantilever"
 if (!exists("runs")) runs = "?"
 if (!exists("stamp")) stamp = ""
@@ -34,13 +35,13 @@ tolof(i) = i <= nexp ? "" : word(itols, i - nexp)
 
 # the points of one scene and series that ran: cpu error (t: the CG
 # tolerance of implicit-euler, "" for the others)
-pts(s, m, t) = sprintf("< awk -F, '$1 == \"%s\" && $4 == \"%s\" && (\"%s\" == \"\" || $7 == \"%s\") && $8 == \"ok\" && $10 > 0 && $14 > 0 { print $10, $14 }' '%s'", s, m, t, t, csvf)
-cnt(s, m, t, st) = int(system(sprintf("awk -F, '$1 == \"%s\" && $4 == \"%s\" && (\"%s\" == \"\" || $7 == \"%s\") && $8 == \"%s\"' '%s' | wc -l", s, m, t, t, st, csvf)))
+pts(s, m, t) = sprintf("< awk -F, '$1 == \"%s\" && $4 == \"%s\" && (\"%s\" == \"\" || $7 == \"%s\") && $8 == \"ok\" && $10 > 0 && $14 > 0 { print $10, $14 }' '%s'", s, m, t, t, csv)
+cnt(s, m, t, st) = int(system(sprintf("awk -F, '$1 == \"%s\" && $4 == \"%s\" && (\"%s\" == \"\" || $7 == \"%s\") && $8 == \"%s\"' '%s' | wc -l", s, m, t, t, st, csv)))
 name(i) = meth(i) . (i > nexp ? " (CG tol " . tolof(i) . ")" : "")
 title(s, i) = name(i) . (meth(i) eq "dopri5" ? " (tolerance)" : "") . \
 	(cnt(s, meth(i), tolof(i), "blowup") > 0 ? sprintf(": %d of %d blew up", cnt(s, meth(i), tolof(i), "blowup"), \
 		cnt(s, meth(i), tolof(i), "blowup") + cnt(s, meth(i), tolof(i), "ok")) : "")
-until_of(s) = system(sprintf("awk -F, '$1 == \"%s\" { print $2; exit }' '%s'", s, csvf))
+until_of(s) = system(sprintf("awk -F, '$1 == \"%s\" { print $2; exit }' '%s'", s, csv))
 
 set logscale xy
 set format x "10^{%L}"
@@ -50,7 +51,7 @@ set xlabel "CPU seconds (user + system, median)"
 set ylabel "max node distance to reference (m)"
 set key outside right top
 
-if (outf eq "") {
+if (term eq "dumb") {
 	set terminal dumb size 120,34
 	set format x "%.0e"
 	set format y "%.0e"

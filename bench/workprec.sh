@@ -318,19 +318,8 @@ echo
 echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null) ($ncpu cores)"
 echo "data: $csv"
 
-gnuplot=${GNUPLOT:-gnuplot}
-if command -v "$gnuplot" >/dev/null 2>&1; then
-	args="csvf='$csv'; runs='$runs'; stamp='$stamp'; ncpu='$ncpu'; itols='$itols'; scenes='$(for p in $scenes; do printf '%s ' "${p%%:*}"; done)'"
-	if "$gnuplot" -e "$args; outf='$out/workprec.png'" "$here/workprec.gp" 2>"$tmp/gp.err" &&
-		"$gnuplot" -e "$args; outf=''" "$here/workprec.gp" 2>>"$tmp/gp.err"; then
-		echo "chart: $out/workprec.png"
-	else
-		echo "workprec.sh: gnuplot failed, no chart:" >&2
-		cat "$tmp/gp.err" >&2
-		bad=1
-	fi
-else
-	echo "gnuplot not found: no chart drawn (the figures above are the whole result)."
-	echo "  To draw $out/workprec.png, install it:  sudo apt-get install -y gnuplot-nox"
-fi
+prog=workprec.sh
+. "$here/plot.sh"
+plot workprec.gp "$csv" "$out/workprec.png" \
+	"runs='$runs'; stamp='$stamp'; ncpu='$ncpu'; itols='$itols'; scenes='$(for p in $scenes; do printf '%s ' "${p%%:*}"; done)'" || bad=1
 exit $bad

@@ -72,6 +72,22 @@ edit_scene() {
 	' - "$src"
 }
 
+# scaled_tablecloth N 'section.key=value' ... > DST
+# The shipped tablecloth at N x N nodes, 10 mm apart: the cloth's origin
+# and the box's horizontal extents scaled by (N - 1) / 24, their heights
+# kept, so that every size meets the box at the same time; further edits
+# as edit_scene's (scaling.sh, fast.sh).
+scaled_tablecloth() {
+	local n=$1 k o bmin bmax
+	shift
+	k=$(awk -v n="$n" 'BEGIN { printf "%.6g", (n - 1) / 24 }')
+	o=$(awk -v k="$k" 'BEGIN { printf "%.6g 0.15 %.6g m", -0.12 * k, -0.12 * k }')
+	bmin=$(awk -v k="$k" 'BEGIN { printf "0 0 %.6g m", -0.08 * k }')
+	bmax=$(awk -v k="$k" 'BEGIN { printf "%.6g 0.12 %.6g m", 0.14 * k, 0.06 * k }')
+	edit_scene "$srcdir/scenes/tablecloth.scene" "cloth.nodes=$n $n" "cloth.origin=$o" \
+		"box.min=$bmin" "box.max=$bmax" "$@"
+}
+
 # One run of $tmp/SCENE-LABEL.scene to T, appended to $rawf as
 # "SCENE LABEL ROUND STATUS summary-fields CPU" (CPU: user + system
 # seconds, which other jobs inflate less than the wall time); a blow-up

@@ -19,6 +19,8 @@
 #   BENCH_POLICIES  which of keep q slide ref to run (default "keep q ref";
 #                   slide = seed/seed/slide, ref = grid/ccd/slide)
 #   BENCH_OUT       output directory (default bench/results)
+#   BENCH_JOBS      runs at once (default: one a core; bench/sweep.sh -j)
+#   BENCH_SWEEP_ARGS  more options for bench/sweep.sh, e.g. "-S 8/node1,:"
 #   DRAPE           the binary (default src/drape)
 #   BENCH_SRCDIR    the source tree, for scenes/ (default: this script's ..)
 #   GNUPLOT         the gnuplot to draw the chart with (default gnuplot)
@@ -77,33 +79,71 @@ echo
 
 datf=$out/position.csv
 echo "policy,broad,narrow,position,t_s,status,energy_J,kinetic_J,wall_s" >"$datf"
+# Each point is its own run, through bench/sweep.sh (GNU parallel,
+# BENCH_JOBS at a time; default a job a core), in two sweeps so that no run
+# is made that the loop of one run after another would not make: first the
+# last time of each policy, which says whether and when it blows up; then
+# the earlier times, of a policy that blows up only those before its
+# blow-up (a run is deterministic: a later one would stop at the same
+# step, and its row is the first sweep's).
+jobs=()
+[ -n "${BENCH_JOBS:-}" ] && jobs=(-j "$BENCH_JOBS")
+read -r -a more <<<"${BENCH_SWEEP_ARGS:-}"
+last=$(printf '%s\n' $times | tail -n 1)
+sweep_rows() { # dir rows: the sweep, then its rows as
+	# "broad narrow position t exit total kinetic wall failure_t error" (\037)
+	DRAPE=$drape "$here/sweep.sh" -q -o "$1" -r "$2" "${jobs[@]}" "${more[@]}" "$src"
+	[ $? -le 1 ] || die "bench/sweep.sh failed"
+	"$here/csvcols.sh" -d $'\037' "$1/results.csv" collision.broad collision.narrow \
+		collision.position simulation.duration exit energy.total energy.kinetic time.wall \
+		failure.t error
+}
+header=$(printf 'collision.broad\tcollision.narrow\tcollision.position\tsimulation.duration')
+{ echo "$header"; for p in $policies; do read -r b n pos <<<"$(settings "$p")"; printf '%s\t%s\t%s\t%s\n' "$b" "$n" "$pos" "$last"; done; } >"$tmp/last.tsv"
+sweep_rows "$tmp/last" "$tmp/last.tsv" >"$tmp/last.rows"
+echo "$header" >"$tmp/early.tsv"
+i=0
+for p in $policies; do
+	i=$((i + 1))
+	read -r b n pos <<<"$(settings "$p")"
+	IFS=$'\037' read -r _ _ _ _ rc _ _ _ ft _ <<<"$(sed -n "${i}p" "$tmp/last.rows")"
+	for t in $times; do
+		[ "$t" = "$last" ] && continue
+		case $rc in
+		0) ;;
+		3) awk -v t="$t" -v f="$ft" 'BEGIN { exit !(t <= f) }' || continue ;;
+		*) continue ;;
+		esac
+		printf '%s\t%s\t%s\t%s\n' "$b" "$n" "$pos" "$t" >>"$tmp/early.tsv"
+	done
+done
+if [ "$(wc -l <"$tmp/early.tsv")" -gt 1 ]; then sweep_rows "$tmp/early" "$tmp/early.tsv" >"$tmp/early.rows"
+else : >"$tmp/early.rows"; fi
 bad=0
+# the rows in the loop's order: each policy's times, then its last or its blow-up
 for p in $policies; do
 	read -r b n pos <<<"$(settings "$p")"
-	for t in $times; do
-		[ -t 2 ] && printf '\r  %s: t = %s s          ' "$p" "$t" >&2
-		s0=$(date +%s.%N)
-		"$drape" run --headless --until "$t" "$tmp/$p.scene" >"$tmp/stdout" 2>"$tmp/stderr"
-		rc=$?
-		wall=$(awk -v a="$s0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
-		en=$(awk '/^energy / { e = $2; k = $5; sub(/,$/, "", k); print e "," k }' "$tmp/stdout")
-		[ -n "$en" ] || en="-,-"
+	cat "$tmp/early.rows" "$tmp/last.rows" |
+	while IFS=$'\037' read -r rb rn rpos t rc et ek wall ft err; do
+		[ "$rb $rn $rpos" = "$b $n $pos" ] || continue
+		# the summary's figures: total %.6e, kinetic %.4e
+		en=$(awk -v e="$et" -v k="$ek" 'BEGIN { if (e == "") print "-,-"; else printf "%.6e,%.4e\n", e, k }')
+		wall=$(awk -v w="$wall" 'BEGIN { printf "%.2f", w }')
 		case $rc in
 		0) echo "$p,$b,$n,$pos,$t,ok,$en,$wall" >>"$datf" ;;
 		3)
-			tb=$(sed -n 's/.*blow-up at step [0-9]* (t = \([0-9.eE+-]*\) s).*/\1/p' "$tmp/stderr" | head -n 1)
-			sed "s|$tmp/||" "$tmp/stderr" | head -n 1 >"$tmp/$p.blowup"
+			tb=$(printf '%s\n' "$err" | sed -n 's/.*blow-up at step [0-9]* (t = \([0-9.eE+-]*\) s).*/\1/p')
+			printf '%s\n' "$err" | sed "s|$src|$p.scene|" >"$tmp/$p.blowup"
 			echo "$p,$b,$n,$pos,${tb:-$t},blowup,$en,$wall" >>"$datf"
-			break
 			;;
 		*)
-			bad=1
-			{ echo; echo "position.sh: $p t=$t: drape exited $rc:"; sed 's/^/  /' "$tmp/stderr"; } >&2
-			break
+			echo "position.sh: $p t=$t: drape exited ${rc:-?}: $err" >&2
+			echo 1 >"$tmp/bad"
 			;;
 		esac
 	done
 done
+[ -e "$tmp/bad" ] && bad=1
 [ -t 2 ] && printf '\r%60s\r' '' >&2
 
 # text table: one row per time, one column per policy

@@ -45,13 +45,8 @@ echo
 
 for n in $sizes; do
 	case $n in '' | *[!0-9]* | 0 | 1) die "BENCH_SCALING_SIZES are whole numbers > 1, not '$n'" ;; esac
-	k=$(awk -v n="$n" 'BEGIN { printf "%.6g", (n - 1) / 24 }')
-	o=$(awk -v k="$k" 'BEGIN { printf "%.6g 0.15 %.6g m", -0.12 * k, -0.12 * k }')
-	bmin=$(awk -v k="$k" 'BEGIN { printf "0 0 %.6g m", -0.08 * k }')
-	bmax=$(awk -v k="$k" 'BEGIN { printf "%.6g 0.12 %.6g m", 0.14 * k, 0.06 * k }')
 	for self in on off; do
-		edit_scene "$src" "cloth.nodes=$n $n" "cloth.origin=$o" "box.min=$bmin" "box.max=$bmax" \
-			"collision.self=$self" >"$tmp/$n-$self.scene"
+		scaled_tablecloth "$n" "collision.self=$self" >"$tmp/$n-$self.scene"
 	done
 done
 

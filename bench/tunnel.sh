@@ -23,6 +23,8 @@
 #   BENCH_OFFSETS   runs per ratio and combination (default 4)
 #   BENCH_POSITION  the position policy of every run (default slide)
 #   BENCH_OUT       output directory (default bench/results)
+#   BENCH_JOBS      runs at once (default: one a core; bench/sweep.sh -j)
+#   BENCH_SWEEP_ARGS  more options for bench/sweep.sh, e.g. "-S 8/node1,:"
 #   DRAPE           the binary (default src/drape)
 #   BENCH_SRCDIR    the source tree (default: this script's ..)
 #   GNUPLOT         the gnuplot to draw the chart with (default gnuplot)
@@ -116,7 +118,12 @@ echo
 
 runf=$out/tunnel-runs.csv
 echo "ratio,v_m_s,broad,narrow,offset,x0_mm,y0_mm,until_s,exit,nodes_through,nodes,contacts" >"$runf"
-bad=0
+# every run is independent: all of them, as the rows of one sweep through
+# bench/sweep.sh (GNU parallel, BENCH_JOBS at a time, default a job a
+# core); meta.txt keeps each row's ratio, offset and times
+rowsf=$tmp/rows.tsv metaf=$tmp/meta.txt
+printf 'collision.broad\tcollision.narrow\tcloth.velocity\tcloth.origin\tsimulation.duration\n' >"$rowsf"
+: >"$metaf"
 for r in $ratios; do
 	v=$(awk -v r="$r" -v c="$cell" -v dt="$dt" 'BEGIN { printf "%.6g", r * c / 1000 / dt }')
 	for k in $(seq 0 $((noff - 1))); do
@@ -128,24 +135,36 @@ for r in $ratios; do
 		until_t=$(awk -v y="$y0" -v v="$v" 'BEGIN { printf "%.6g", 2 * y / 1000 / v }')
 		for bn in $combos; do
 			b=${bn%/*} n=${bn#*/}
-			sf=$tmp/run.scene
-			scene "$b" "$n" "$v" "$x0" "$y0" >"$sf"
-			rm -f "$tmp/final.obj"
-			"$drape" run --headless --until "$until_t" --final-obj "$tmp/final.obj" "$sf" >"$tmp/stdout" 2>"$tmp/stderr"
-			rc=$?
-			ct=$(awk '/^contacts / { s = 0; n = split($0, p, ","); for (i = 1; i <= n; i++) { m = split(p[i], w, " "); s += w[m] } print s }' "$tmp/stdout")
-			case $rc in
-			0) thr=$(awk '$1 == "v" && $3 < 0 { n++ } END { print n + 0 }' "$tmp/final.obj") ;;
-			3) thr=- ;;
-			*)
-				bad=1; thr=-
-				{ echo "tunnel.sh: ratio $r $bn offset $k: drape exited $rc:"; sed 's/^/  /' "$tmp/stderr"; } >&2
-				;;
-			esac
-			echo "$r,$v,$b,$n,$k,$x0,$y0,$until_t,$rc,$thr,$nn,${ct:--}" >>"$runf"
+			printf '%s\t%s\t0 -%s 0 m/s\t%s %s %s mm\t%s\n' "$b" "$n" "$v" "$x0" "$y0" "$x0" "$until_t" >>"$rowsf"
+			echo "$r $v $b $n $k $x0 $y0 $until_t" >>"$metaf"
 		done
 	done
 done
+scene grid ccd 1 0 20 >"$tmp/run.scene"
+jobs=()
+[ -n "${BENCH_JOBS:-}" ] && jobs=(-j "$BENCH_JOBS")
+read -r -a more <<<"${BENCH_SWEEP_ARGS:-}"
+DRAPE=$drape "$here/sweep.sh" -q -o "$tmp/sweep" -r "$rowsf" "${jobs[@]}" "${more[@]}" \
+	"$tmp/run.scene" -- --final-obj '{job}/final.obj'
+[ $? -le 1 ] || die "bench/sweep.sh failed"
+bad=0
+"$here/csvcols.sh" -d $'\037' "$tmp/sweep/results.csv" job exit error collisions.node_node \
+	collisions.node_edge collisions.node_face collisions.edge_edge collisions.obstacle |
+	paste -d $'\037' - "$metaf" |
+while IFS=$'\037' read -r job rc err c1 c2 c3 c4 c5 meta; do
+	read -r r v b n k x0 y0 until_t <<<"$meta"
+	ct=$(awk -v a="$c1" -v b="$c2" -v c="$c3" -v d="$c4" -v e="$c5" 'BEGIN { if (a != "") print a + b + c + d + e }')
+	case $rc in
+	0) thr=$(awk '$1 == "v" && $3 < 0 { n++ } END { print n + 0 }' "$tmp/sweep/jobs/$job/final.obj") ;;
+	3) thr=- ;;
+	*)
+		thr=-
+		echo "tunnel.sh: ratio $r $b/$n offset $k: drape exited ${rc:-?}: $err" >&2
+		;;
+	esac
+	echo "$r,$v,$b,$n,$k,$x0,$y0,$until_t,${rc:--},$thr,$nn,${ct:--}" >>"$runf"
+done
+awk -F, 'NR > 1 && $9 != 0 && $9 != 3 { bad = 1 } END { exit !bad }' "$runf" && bad=1
 
 # per ratio and combination: the rate over the offsets that ran through
 datf=$out/tunnel.csv

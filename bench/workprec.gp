@@ -22,12 +22,12 @@ if (!exists("ncpu")) ncpu = "?"
 if (!exists("itols")) itols = "1e-8 1e-3"
 
 nsc = words(scenes)
-# the series: the five explicit methods, then implicit-euler once per CG
-# tolerance (ntol at most 3)
-nexp = 5
-ntol = words(itols) > 3 ? 3 : words(itols)
+# the series: the five explicit methods and fast, then implicit-euler once
+# per CG tolerance (ntol at most 2)
+nexp = 6
+ntol = words(itols) > 2 ? 2 : words(itols)
 nser = nexp + ntol
-methods = "euler symplectic-euler rk2 rk4 dopri5"
+methods = "euler symplectic-euler rk2 rk4 dopri5 fast"
 array col[8] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4", "#d62728", "#8c564b", "#e377c2", "#17becf"]
 array pt[8] = [4, 6, 8, 7, 5, 9, 13, 3]
 meth(i) = i <= nexp ? word(methods, i) : "implicit-euler"

@@ -12,7 +12,8 @@
 # dt = f / omega for each f of BENCH_WP_IMPLICIT_FACTORS (stable at any step:
 # they reach far above the others') once for each CG tolerance of
 # BENCH_WP_IMPLICIT_TOLS (the same `tolerance` key, which for implicit-euler
-# is the relative residual of its linear solve). Each run goes to the same end
+# is the relative residual of its linear solve), and fast (the
+# position-based fast path) at BENCH_WP_FAST_FACTORS. Each run goes to the same end
 # time (--until) and writes its final mesh (--final-obj); the error is the
 # largest distance between a node there and the same node of the
 # reference's final mesh. The CPU time (user + system, bash's time) is the
@@ -33,6 +34,7 @@
 #   BENCH_WP_DOPRI_DT      dopri5's first and largest step (default 1e-3 s)
 #   BENCH_WP_IMPLICIT_FACTORS  dt * omega of the implicit-euler runs (default 1024 512 ... 0.0625)
 #   BENCH_WP_IMPLICIT_TOLS     implicit-euler CG tolerances (default "1e-8 1e-3")
+#   BENCH_WP_FAST_FACTORS  dt * omega of the fast runs (default: implicit-euler's)
 #   BENCH_WP_REF           dt * omega of the RK4 reference (default 1/64)
 #   BENCH_WP_MAXSTEPS      skip a fixed-step run of more steps than this (default 1e6)
 #   BENCH_WP_TARGET        error (m) for the cost-ratio table (default 1e-5)
@@ -67,6 +69,10 @@ ifactors=${BENCH_WP_IMPLICIT_FACTORS:-1024 512 256 128 64 32 16 8 4 2 1 0.5 0.25
 # that on the cantilever its error is up to 1.9x 1e-8's: there the solve's
 # error shows (results/workprec.csv of 2026-12-01, bench/README.md).
 itols=${BENCH_WP_IMPLICIT_TOLS:-1e-8 1e-3}
+# The fast path (position-based substeps, pbd.h): its step is cut into
+# substeps for its soft forces, so it too runs at any step; the same
+# factors as implicit-euler's.
+ffactors=${BENCH_WP_FAST_FACTORS:-$ifactors}
 ref_f=${BENCH_WP_REF:-0.015625}
 maxsteps=${BENCH_WP_MAXSTEPS:-1e6}
 target=${BENCH_WP_TARGET:-1e-5}
@@ -75,7 +81,7 @@ mincpu=${BENCH_WP_MINCPU:-0.1}
 die() { echo "workprec.sh: $*" >&2; exit 2; }
 case $runs in '' | *[!0-9]* | 0) die "BENCH_RUNS must be a whole number > 0, not '$runs'" ;; esac
 isnum() { awk -v t="$1" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }'; }
-for v in $factors $efactors $tols $dopri_dt $ifactors $itols $ref_f $maxsteps $target $mincpu; do
+for v in $factors $efactors $tols $dopri_dt $ifactors $itols $ffactors $ref_f $maxsteps $target $mincpu; do
 	isnum "$v" || die "not a number > 0: '$v'"
 done
 for p in $scenes; do
@@ -199,6 +205,7 @@ for p in $scenes; do
 		for t in $itols; do
 			for f in $ifactors; do echo "implicit-euler dt $f $t"; done
 		done
+		for f in $ffactors; do echo "fast dt $f"; done
 	} >"$tmp/points"
 	sed "/^[ \t]*\[simulation\]/,/^[ \t]*\[/{/^[ \t]*tolerance[ \t]*=/d}" "$src" >"$tmp/base.scene"
 	while read -r m kind par itol; do
@@ -302,6 +309,7 @@ END {
 	nm = split("euler symplectic-euler rk2 rk4 dopri5", ms, " ")
 	nt = split(itols, ts, " ")
 	for (i = 1; i <= nt; i++) ms[++nm] = label("implicit-euler", ts[i])
+	ms[++nm] = "fast"
 	for (s = 1; s <= ns; s++) {
 		sc = order[s]; r = ((sc, "rk4") in best) ? best[sc, "rk4"] : 0
 		for (i = 1; i <= nm; i++) {

@@ -1,10 +1,20 @@
 /* broad.c: candidate pairs for the narrow phase, by the chapter's hash
  * (seed), by swept boxes in the same hash (grid), or all of them (brute). */
+#include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "broad.h"
+
+const char *const broad_mode_name[] = { "seed", "grid", "brute", "bvh", NULL };
+
+bool
+broad_uses_hash(enum broad_mode mode)
+{
+	return mode == BROAD_SEED || mode == BROAD_GRID;
+}
 
 void
 broad_init(struct broad *b, enum broad_mode mode)
@@ -25,7 +35,22 @@ broad_free(struct broad *b)
 	free(b->stamp);
 	free(b->box);
 	free(b->allowed);
+	free(b->big);
+	free(b->is_big);
+	free(b->node);
+	free(b->rep_vertex);
+	free(b->rep_edge);
+	free(b->tri_edge);
+	free(b->stack);
+	free(b->qbox);
+	free(b->ebox);
 	memset(b, 0, sizeof *b);
+}
+
+static bool
+stop_asked(const struct broad *b)
+{
+	return b->stop != NULL && *b->stop;
 }
 
 static int
@@ -38,17 +63,37 @@ grow(void **p, size_t *cap, size_t need, size_t size)
 		return 0;
 	while (n < need)
 		n *= 2;
-	if ((np = realloc(*p, n * size)) == NULL)
+	if (n > SIZE_MAX / size || (np = realloc(*p, n * size)) == NULL)
 		return -1;
 	*p = np;
 	*cap = n;
 	return 0;
 }
 
+/* The pair lists' bytes, for the memory limit. */
+static double
+pair_bytes(const struct broad *b)
+{
+	return (double)b->vtcap * sizeof *b->vt + (double)b->eecap * sizeof *b->ee;
+}
+
+/* A pair list grown to hold need entries, within the memory limit. */
+static int
+grow_pairs(struct broad *b, void **p, size_t *cap, size_t need, size_t size)
+{
+	if (need > *cap && b->memory_limit > 0 &&
+	    pair_bytes(b) + (double)*cap * (double)size > b->memory_limit) {
+		b->over_memory = true;
+		return -1;
+	}
+	return grow(p, cap, need, size);
+}
+
 static int
 push_vt(struct broad *b, int v, int t)
 {
-	if (b->nvt == b->vtcap && grow((void **)&b->vt, &b->vtcap, b->nvt + 1, sizeof *b->vt) != 0)
+	if (b->nvt == b->vtcap &&
+	    grow_pairs(b, (void **)&b->vt, &b->vtcap, b->nvt + 1, sizeof *b->vt) != 0)
 		return -1;
 	b->vt[b->nvt].v = v;
 	b->vt[b->nvt++].t = t;
@@ -58,7 +103,8 @@ push_vt(struct broad *b, int v, int t)
 static int
 push_ee(struct broad *b, int e1, int e2)
 {
-	if (b->nee == b->eecap && grow((void **)&b->ee, &b->eecap, b->nee + 1, sizeof *b->ee) != 0)
+	if (b->nee == b->eecap &&
+	    grow_pairs(b, (void **)&b->ee, &b->eecap, b->nee + 1, sizeof *b->ee) != 0)
 		return -1;
 	b->ee[b->nee].a = e1 < e2 ? e1 : e2;
 	b->ee[b->nee++].b = e1 < e2 ? e2 : e1;
@@ -109,17 +155,31 @@ cmp_ee(const void *pa, const void *pb)
 	return (a->b > b->b) - (a->b < b->b);
 }
 
+/* Pairs sorted between two polls of the stop flag: a few milliseconds. */
+#define SORT_POLL_PAIRS 16384
+
 /* Sorts the pairs of each run of one vertex (edge) by triangle (edge):
  * grid finds them vertex by vertex, in a few pairs a run, so insertion sort
- * beats a global sort. */
-static void
+ * beats a global sort. -1 when a signal asks to stop: a fast cloth's
+ * millions of pairs take a quarter of a second to sort, too long to wait
+ * for. */
+static int
 sort_runs(struct broad *b)
 {
-	size_t i, j, k;
+	size_t i, j, k, poll = 0;
 
 	for (i = 0; i < b->nvt; i = j) {
+		if (i >= poll) {
+			if (stop_asked(b))
+				return -1;
+			poll = i + SORT_POLL_PAIRS;
+		}
 		for (j = i + 1; j < b->nvt && b->vt[j].v == b->vt[i].v; j++)
 			;
+		if (j - i > 32) {	/* a fast node's run: no quadratic sort */
+			qsort(b->vt + i, j - i, sizeof *b->vt, cmp_vt);
+			continue;
+		}
 		for (k = i + 1; k < j; k++) {
 			struct vt_pair x = b->vt[k];
 			size_t m = k;
@@ -129,9 +189,18 @@ sort_runs(struct broad *b)
 			b->vt[m] = x;
 		}
 	}
-	for (i = 0; i < b->nee; i = j) {
+	for (i = 0, poll = 0; i < b->nee; i = j) {
+		if (i >= poll) {
+			if (stop_asked(b))
+				return -1;
+			poll = i + SORT_POLL_PAIRS;
+		}
 		for (j = i + 1; j < b->nee && b->ee[j].a == b->ee[i].a; j++)
 			;
+		if (j - i > 32) {
+			qsort(b->ee + i, j - i, sizeof *b->ee, cmp_ee);
+			continue;
+		}
 		for (k = i + 1; k < j; k++) {
 			struct ee_pair x = b->ee[k];
 			size_t m = k;
@@ -141,6 +210,7 @@ sort_runs(struct broad *b)
 			b->ee[m] = x;
 		}
 	}
+	return 0;
 }
 
 /* Sorted and without repeats, so that the narrow phase's order, and with it
@@ -193,7 +263,7 @@ box_overlap(const double *a, const double *b)
 /* The node pairs (A, B) the chapter tests: A against the triangles that
  * have B as a vertex, and B against those of A. */
 static int
-seed_pair(struct broad *b, const struct geom *g, int na, int nb, bool want_ee)
+seed_pair(struct broad *b, const struct geom *g, int na, int nb, const struct broad_want *want)
 {
 	int k, l, pass;
 
@@ -207,7 +277,7 @@ seed_pair(struct broad *b, const struct geom *g, int na, int nb, bool want_ee)
 				return -1;
 		}
 	}
-	if (!want_ee)
+	if (!want->edges)
 		return 0;
 	for (k = g->vedge_start[na]; k < g->vedge_start[na + 1]; k++)
 		for (l = g->vedge_start[nb]; l < g->vedge_start[nb + 1]; l++)
@@ -218,7 +288,8 @@ seed_pair(struct broad *b, const struct geom *g, int na, int nb, bool want_ee)
 }
 
 static int
-find_seed(struct broad *b, const struct geom *g, double cell, bool want_ee, struct drape_err *err)
+find_seed(struct broad *b, const struct geom *g, double cell, const struct broad_want *want,
+    bool *too_small)
 {
 	struct spatial_hash *h = &b->hash;
 	double bx[6];
@@ -229,17 +300,16 @@ find_seed(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 	for (v = 0; v < g->nv; v++)
 		box_add(bx, g->x1 + 3 * v);
 	if (hash_begin(h, cell, v3_load(bx), v3_load(bx + 3), (size_t)g->nv) != 0) {
-		err_set(err, "spatial hash: out of memory, or %g m cubes are too small for "
-		    "the scene's extent", cell);
+		*too_small = true;
 		return -1;
 	}
 	/* the hash table is filled with every node's predicted position */
 	for (v = 0; v < g->nv; v++) {
-		hash_cube_of(h, v3_load(g->x1 + 3 * v), d);
-		if (hash_insert(h, hash_key(h, d[0], d[1], d[2]), v) != 0) {
-			err_set(err, "spatial hash: out of memory");
+		if ((v & 1023) == 0 && stop_asked(b))
 			return -1;
-		}
+		hash_cube_of(h, v3_load(g->x1 + 3 * v), d);
+		if (hash_insert(h, hash_key(h, d[0], d[1], d[2]), v) != 0)
+			return -1;
 	}
 	/* only nodes that share a cube are tested */
 	for (i = 0; i < h->nfilled; i++) {
@@ -247,15 +317,15 @@ find_seed(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 
 		if (c->count < 2)
 			continue;
+		if ((i & 255) == 0 && stop_asked(b))
+			return -1;
 		for (e = c->head; e >= 0; e = h->next[e])
 			for (f = h->next[e]; f >= 0; f = h->next[f]) {
 				b->st.node_pairs++;
 				if (h->item[e] >= g->ncloth && h->item[f] >= g->ncloth)
 					continue;
-				if (seed_pair(b, g, h->item[e], h->item[f], want_ee) != 0) {
-					err_set(err, "broad phase: out of memory");
+				if (seed_pair(b, g, h->item[e], h->item[f], want) != 0)
 					return -1;
-				}
 			}
 	}
 	hash_stats(h, &b->st.hash);
@@ -309,25 +379,90 @@ still_allowed(const struct broad *b, const struct geom *g)
 	return 1;
 }
 
-/* A fill of h with the boxes [first, first + count), each in every cube it
- * overlaps. */
-static int
-fill_boxes(struct spatial_hash *h, const double *box, size_t first, size_t count, double cell,
-    const double *region)
+/* The cubes box bx spans in h's fill, saturating. */
+static size_t
+span(const struct spatial_hash *h, const double *bx)
 {
+	int lo[3], hi[3];
+	double n;
+
+	cube_range(h, bx, lo, hi);
+	n = (double)(hi[0] - lo[0] + 1) * (double)(hi[1] - lo[1] + 1) * (double)(hi[2] - lo[2] + 1);
+	return n < (double)SIZE_MAX / 2 ? (size_t)n : SIZE_MAX / 2;
+}
+
+/*
+ * The hash's memory and time go as the cubes the boxes span, which a box
+ * much larger than a cube (a fast node, a mesh triangle metres wide) could
+ * make anything at all. So a fill takes at most GRID_CUBES_PER_BOX cubes a
+ * box on the whole: the largest boxes beyond that budget are kept out of
+ * the hash, in a list that every query tests directly, which costs them
+ * O(queries) each, as their geometry and not their extent says. The pairs
+ * found are the same either way (box overlap decides, and they are
+ * sorted), so only the cost changes.
+ */
+#define GRID_CUBES_PER_BOX 64
+#define GRID_CUBES_SLACK 4096
+
+/* The largest span that keeps boxes [first, first + count) within the
+ * budget: boxes spanning more go to the big list. */
+static size_t
+span_limit(const struct spatial_hash *h, const double *box, size_t first, size_t count)
+{
+	size_t budget = GRID_CUBES_PER_BOX * count + GRID_CUBES_SLACK, limit = SIZE_MAX / 2, i;
+
+	for (;;) {
+		size_t total = 0, biggest = 0;
+
+		for (i = first; i < first + count; i++) {
+			size_t n = span(h, box + 6 * i);
+
+			if (n <= limit) {
+				total += n;
+				biggest = n > biggest ? n : biggest;
+			}
+		}
+		if (total <= budget || biggest <= 1)
+			return limit;
+		limit = biggest / 2;
+	}
+}
+
+/* A fill of h with the boxes [first, first + count) that span at most
+ * limit cubes, each in every cube it overlaps; the others are appended to
+ * b->big and marked in b->is_big. */
+static int
+fill_boxes(struct broad *b, struct spatial_hash *h, size_t first, size_t count, double cell,
+    const double *region, size_t limit)
+{
+	const double *box = b->box;
 	size_t i, total = 0;
 	int lo[3], hi[3], x, y, z;
 
-	if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), 1) != 0)
-		return -1;
 	for (i = first; i < first + count; i++) {
-		cube_range(h, box + 6 * i, lo, hi);
-		total += (size_t)(hi[0] - lo[0] + 1) * (size_t)(hi[1] - lo[1] + 1) *
-		    (size_t)(hi[2] - lo[2] + 1);
+		size_t n = span(&b->hash, box + 6 * i);	/* the same cubes as h's */
+
+		b->is_big[i] = n > limit;
+		if (n <= limit)
+			total += n;
+		else if (grow((void **)&b->big, &b->bigcap, b->nbig + 1, sizeof *b->big) != 0)
+			return -1;
+		else
+			b->big[b->nbig++] = (int)i;
+	}
+	/* an entry and a next link a cube item, two slots a cube at most */
+	if (b->memory_limit > 0 && pair_bytes(b) + (double)total * (2 * sizeof(int) +
+	    2 * sizeof(struct hash_cube)) > b->memory_limit) {
+		b->over_memory = true;
+		return -1;
 	}
 	if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), total) != 0)
 		return -1;
 	for (i = first; i < first + count; i++) {
+		if (b->is_big[i])
+			continue;
+		if ((i & 255) == 0 && stop_asked(b))
+			return -1;
 		cube_range(h, box + 6 * i, lo, hi);
 		for (y = lo[1]; y <= hi[1]; y++)
 			for (z = lo[2]; z <= hi[2]; z++)
@@ -342,6 +477,96 @@ fill_boxes(struct spatial_hash *h, const double *box, size_t first, size_t count
  * the pairs are found, and they are kept for the next steps as long as
  * every vertex stays inside its widened box (a Verlet list's skin) */
 #define GRID_SKIN 0.1
+
+/* Vertex v's pair with triangle t, if their boxes overlap. */
+static int
+try_vt(struct broad *b, const struct geom *g, int v, int t, const double *qb)
+{
+	if (b->stamp[t] == v)
+		return 0;
+	b->stamp[t] = v;
+	if (!tri_has(g, t, v) && !vt_static(g, v, t) && box_overlap(qb, b->box + 6 * t))
+		return push_vt(b, v, t);
+	return 0;
+}
+
+/* Edge i's pair with edge o > i, if their boxes overlap. */
+static int
+try_ee(struct broad *b, const struct geom *g, size_t i, size_t o, const double *eb)
+{
+	size_t it = g->ntri + o;
+
+	if (o <= i || b->stamp[it] == (int)i)
+		return 0;
+	b->stamp[it] = (int)i;
+	if (!ee_skip(g, (int)i, (int)o) && box_overlap(eb, b->box + 6 * it))
+		return push_ee(b, (int)i, (int)o);
+	return 0;
+}
+
+/* The triangles near vertex v (query box qb): through the hash, or all of
+ * them when qb spans more than limit cubes; and the big ones. */
+static int
+query_triangles(struct broad *b, const struct geom *g, int v, const double *qb, size_t limit)
+{
+	const struct spatial_hash *h = &b->hash;
+	int lo[3], hi[3], x, y, z, e;
+	size_t k;
+
+	if (span(h, qb) > limit) {
+		for (k = 0; k < g->ntri; k++)
+			if (try_vt(b, g, v, (int)k, qb) != 0)
+				return -1;
+		return 0;
+	}
+	cube_range(h, qb, lo, hi);
+	for (y = lo[1]; y <= hi[1]; y++)
+		for (z = lo[2]; z <= hi[2]; z++)
+			for (x = lo[0]; x <= hi[0]; x++) {
+				const struct hash_cube *c = hash_find(h, hash_key(h, x, y, z));
+
+				for (e = c != NULL ? c->head : -1; e >= 0; e = h->next[e])
+					if ((size_t)h->item[e] < g->ntri &&
+					    try_vt(b, g, v, h->item[e], qb) != 0)
+						return -1;
+			}
+	for (k = 0; k < b->nbig_tri; k++)
+		if (try_vt(b, g, v, b->big[k], qb) != 0)
+			return -1;
+	return 0;
+}
+
+/* The edges after edge i near it: the same way. */
+static int
+query_edges(struct broad *b, const struct geom *g, size_t i, size_t limit)
+{
+	const struct spatial_hash *he = &b->hash_edges;
+	const double *eb = b->box + 6 * (g->ntri + i);
+	int lo[3], hi[3], x, y, z, e;
+	size_t k;
+
+	if (b->is_big[g->ntri + i]) {
+		for (k = i + 1; k < g->nedges; k++)
+			if (try_ee(b, g, i, k, eb) != 0)
+				return -1;
+		return 0;
+	}
+	(void)limit;
+	cube_range(he, eb, lo, hi);
+	for (y = lo[1]; y <= hi[1]; y++)
+		for (z = lo[2]; z <= hi[2]; z++)
+			for (x = lo[0]; x <= hi[0]; x++) {
+				const struct hash_cube *c = hash_find(he, hash_key(he, x, y, z));
+
+				for (e = c != NULL ? c->head : -1; e >= 0; e = he->next[e])
+					if (try_ee(b, g, i, (size_t)he->item[e] - g->ntri, eb) != 0)
+						return -1;
+			}
+	for (k = b->nbig_tri; k < b->nbig; k++)
+		if (try_ee(b, g, i, (size_t)b->big[k] - g->ntri, eb) != 0)
+			return -1;
+	return 0;
+}
 
 /*
  * grid: the chapter's hash holds triangles (and edges) instead of nodes,
@@ -359,17 +584,18 @@ fill_boxes(struct spatial_hash *h, const double *box, size_t first, size_t count
  * point lie in widened boxes that share it, whose pair was found.
  */
 static int
-find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, struct drape_err *err)
+find_grid(struct broad *b, const struct geom *g, double cell, const struct broad_want *want)
 {
-	struct spatial_hash *h = &b->hash, *he = &b->hash_edges;
-	size_t nbox = g->ntri + (want_ee ? g->nedges : 0), i;
+	struct spatial_hash *h = &b->hash;
+	size_t nbox = g->ntri + (want->edges ? g->nedges : 0), i, tri_limit, edge_limit = 0;
 	double region[6], qb[6], skin = GRID_SKIN * cell;
-	int lo[3], hi[3], x, y, z, v, k;
+	int v, k;
 
 	if (grow((void **)&b->box, &b->boxcap, 6 * nbox, sizeof *b->box) != 0 ||
 	    grow((void **)&b->stamp, &b->stampcap, nbox, sizeof *b->stamp) != 0 ||
+	    grow((void **)&b->is_big, &b->is_bigcap, nbox, sizeof *b->is_big) != 0 ||
 	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0)
-		goto oom;
+		return -1;
 	for (v = 0; v < g->nv; v++) {
 		double *a = b->allowed + 6 * v;
 
@@ -399,140 +625,598 @@ find_grid(struct broad *b, const struct geom *g, double cell, bool want_ee, stru
 		if (hash_begin(h, cell, v3_load(region), v3_load(region + 3), 1) == 0)
 			break;
 		if ((cell *= 2) > 1e300)
-			goto oom;
+			return -1;
 	}
 	b->st.cell = cell;
 	/* triangles and edges in hashes of their own, on the same cubes: a
 	 * node looks for triangles only, an edge for edges only */
-	if (fill_boxes(h, b->box, 0, g->ntri, cell, region) != 0 ||
-	    (want_ee && fill_boxes(&b->hash_edges, b->box, g->ntri, g->nedges, cell, region) != 0))
-		goto oom;
+	b->nbig = 0;
+	tri_limit = span_limit(h, b->box, 0, g->ntri);
+	if (fill_boxes(b, h, 0, g->ntri, cell, region, tri_limit) != 0)
+		return -1;
+	b->nbig_tri = b->nbig;
+	if (want->edges) {
+		edge_limit = span_limit(h, b->box, g->ntri, g->nedges);	/* h: the same cubes */
+		if (fill_boxes(b, &b->hash_edges, g->ntri, g->nedges, cell, region, edge_limit) != 0)
+			return -1;
+	}
+	b->st.big = (long)b->nbig;
 
-	/* each node's swept box; for the seed narrow phase, widened to the
-	 * segments from its neighbours at step k that it draws to the node */
+	/* each node's swept box, widened if asked to the segments from its
+	 * neighbours at step k to the node */
 	for (v = 0; v < g->nv; v++) {
-		if (v >= g->ncloth && !want_ee)
+		if (v >= g->ncloth && !want->mesh_vertices)
 			break;
+		if ((v & 255) == 0 && stop_asked(b))
+			return -1;
 		box_empty(qb);
 		allowed_box(qb, b, v);
-		for (k = g->vedge_start[v]; !want_ee && k < g->vedge_start[v + 1]; k++) {
+		for (k = g->vedge_start[v]; want->neighbour_paths && k < g->vedge_start[v + 1]; k++) {
 			const int *en = g->edge + 2 * g->vedge[k];
 
 			allowed_box(qb, b, en[0] == v ? en[1] : en[0]);
 		}
-		cube_range(h, qb, lo, hi);
-		for (y = lo[1]; y <= hi[1]; y++)
-			for (z = lo[2]; z <= hi[2]; z++)
-				for (x = lo[0]; x <= hi[0]; x++) {
-					const struct hash_cube *c = hash_find(h, hash_key(h, x, y, z));
-					int e;
-
-					for (e = c != NULL ? c->head : -1; e >= 0; e = h->next[e]) {
-						int t = h->item[e];
-
-						if ((size_t)t >= g->ntri || b->stamp[t] == v)
-							continue;
-						b->stamp[t] = v;
-						if (!tri_has(g, t, v) && !vt_static(g, v, t) &&
-						    box_overlap(qb, b->box + 6 * t) &&
-						    push_vt(b, v, t) != 0)
-							goto oom;
-					}
-				}
+		if (query_triangles(b, g, v, qb, tri_limit > GRID_CUBES_PER_BOX ? tri_limit :
+		    GRID_CUBES_PER_BOX) != 0)
+			return -1;
 	}
-	for (i = 0; want_ee && i < g->nedges; i++) {
-		const double *eb = b->box + 6 * (g->ntri + i);
-
-		cube_range(he, eb, lo, hi);
-		for (y = lo[1]; y <= hi[1]; y++)
-			for (z = lo[2]; z <= hi[2]; z++)
-				for (x = lo[0]; x <= hi[0]; x++) {
-					const struct hash_cube *c = hash_find(he, hash_key(he, x, y, z));
-					int e;
-
-					for (e = c != NULL ? c->head : -1; e >= 0; e = he->next[e]) {
-						size_t it = (size_t)he->item[e], o = it - g->ntri;
-
-						if (o <= i || b->stamp[it] == (int)i)
-							continue;
-						b->stamp[it] = (int)i;
-						if (!ee_skip(g, (int)i, (int)o) &&
-						    box_overlap(eb, b->box + 6 * it) &&
-						    push_ee(b, (int)i, (int)o) != 0)
-							goto oom;
-					}
-				}
+	for (i = 0; want->edges && i < g->nedges; i++) {
+		if ((i & 255) == 0 && stop_asked(b))
+			return -1;
+		if (query_edges(b, g, i, edge_limit) != 0)
+			return -1;
 	}
 	hash_stats(h, &b->st.hash);
 	return 0;
-oom:
-	err_set(err, "broad phase: out of memory");
+}
+
+/* ---- bvh ----
+ *
+ * The grid's pairs, found with a tree of boxes over the triangles instead
+ * of a hash: a box a vertex (its swept box, widened by the skin as the
+ * grid's), a triangle the box of its vertices', a node of the tree the
+ * box of its children. The tree is built once by halving the triangles
+ * along their longest extent (a cloth's topology is fixed, so the tree
+ * stays coherent: neighbours in it are neighbours on the cloth) and
+ * refitted each fill in O(n); the cloth's tree is traversed against itself
+ * and against the meshes' (static) tree. Each vertex and each edge is
+ * looked up through one of its triangles only, its representative, so
+ * every pair comes once from the one pair of leaves that holds it; a
+ * vertex's box lies in its representative's, so no pair the grid finds is
+ * missed, and checking the vertex's (edge's) own box against the other
+ * triangle's (edge's) gives exactly the grid's set, sorted the same: the
+ * results are the grid's, only the cost differs (no cubes, no edge hash,
+ * no duplicates). */
+
+/* Builds the subtree of triangles tri[lo, hi) at node index *next on,
+ * depth first; returns its root. */
+static int
+bvh_build(struct broad *b, const struct geom *g, int *tri, double *key, int lo, int hi,
+    int *next)
+{
+	int at = (*next)++, k, mid, axis = 0;
+	double bx[6];
+
+	b->node[at].left = b->node[at].right = -1;
+	b->node[at].tri = tri[lo];
+	if (hi - lo == 1)
+		return at;
+	box_empty(bx);
+	for (k = lo; k < hi; k++) {
+		const int *n = g->tri + 3 * tri[k];
+		double c[3] = { 0, 0, 0 };
+		int j, d;
+
+		for (j = 0; j < 3; j++)
+			for (d = 0; d < 3; d++)
+				c[d] += g->x0[3 * n[j] + d] / 3;
+		box_add(bx, c);
+	}
+	for (k = 1; k < 3; k++)
+		if (bx[3 + k] - bx[k] > bx[3 + axis] - bx[axis])
+			axis = k;
+	/* a stable split at the median by centroid along axis: keys, then an
+	 * insertion-free partition by sorting (ties by triangle number) */
+	for (k = lo; k < hi; k++) {
+		const int *n = g->tri + 3 * tri[k];
+
+		key[k] = g->x0[3 * n[0] + axis] + g->x0[3 * n[1] + axis] + g->x0[3 * n[2] + axis];
+	}
+	mid = lo + (hi - lo) / 2;
+	{
+		/* selection by repeated partition (quickselect with the middle
+		 * element as pivot), deterministic */
+		int l = lo, r = hi - 1;
+
+		while (l < r) {
+			double pk = key[(l + r) / 2];
+			int pt = tri[(l + r) / 2], i = l, j = r;
+
+			while (i <= j) {
+				while (key[i] < pk || (key[i] == pk && tri[i] < pt))
+					i++;
+				while (key[j] > pk || (key[j] == pk && tri[j] > pt))
+					j--;
+				if (i <= j) {
+					double tk = key[i];
+					int tt = tri[i];
+
+					key[i] = key[j];
+					tri[i] = tri[j];
+					key[j] = tk;
+					tri[j] = tt;
+					i++;
+					j--;
+				}
+			}
+			if (mid <= j)
+				r = j;
+			else if (mid >= i)
+				l = i;
+			else
+				break;
+		}
+	}
+	b->node[at].left = bvh_build(b, g, tri, key, lo, mid, next);
+	b->node[at].right = bvh_build(b, g, tri, key, mid, hi, next);
+	return at;
+}
+
+/* The trees and the representatives, for geometry g; once. */
+static int
+bvh_prepare(struct broad *b, const struct geom *g)
+{
+	size_t t, ncloth_tri = 0;
+	int *tri = NULL, v, next = 0, e;
+	double *key = NULL;
+
+	if (b->node != NULL && b->bvh_nv == g->nv && b->bvh_ntri == g->ntri)
+		return 0;
+	free(b->node);
+	free(b->rep_vertex);
+	free(b->rep_edge);
+	free(b->tri_edge);
+	b->node = NULL;
+	b->rep_vertex = b->rep_edge = b->tri_edge = NULL;
+	if (g->ntri == 0 || g->ntri > (size_t)INT_MAX / 2)
+		return g->ntri == 0 ? 0 : -1;
+	b->node = malloc((2 * g->ntri) * sizeof *b->node);
+	b->rep_vertex = malloc(((size_t)g->nv + 1) * sizeof *b->rep_vertex);
+	b->rep_edge = malloc((g->nedges + 1) * sizeof *b->rep_edge);
+	b->tri_edge = malloc(3 * g->ntri * sizeof *b->tri_edge);
+	tri = malloc(g->ntri * sizeof *tri);
+	key = malloc(g->ntri * sizeof *key);
+	if (b->node == NULL || b->rep_vertex == NULL || b->rep_edge == NULL ||
+	    b->tri_edge == NULL || tri == NULL || key == NULL)
+		goto fail;
+	for (t = 0; t < g->ntri; t++) {
+		tri[t] = (int)t;
+		ncloth_tri += g->tri[3 * t] < g->ncloth;	/* cloth triangles come first */
+	}
+	b->cloth_root = b->mesh_root = -1;
+	if (ncloth_tri > 0)
+		b->cloth_root = bvh_build(b, g, tri, key, 0, (int)ncloth_tri, &next);
+	if (ncloth_tri < g->ntri)
+		b->mesh_root = bvh_build(b, g, tri, key, (int)ncloth_tri, (int)g->ntri, &next);
+	b->nnodes = next;
+	for (v = 0; v < g->nv; v++)
+		b->rep_vertex[v] = g->vtri_start[v] < g->vtri_start[v + 1] ?
+		    g->vtri[g->vtri_start[v]] : -1;
+	for (t = 0; t < 3 * g->ntri; t++)
+		b->tri_edge[t] = -1;
+	for (e = 0; e < (int)g->nedges; e++) {
+		int a = g->edge[2 * e], c = g->edge[2 * e + 1], k, j;
+
+		b->rep_edge[e] = -1;
+		for (k = g->vtri_start[a]; k < g->vtri_start[a + 1]; k++) {
+			int tt = g->vtri[k];
+
+			if (!tri_has(g, tt, c))
+				continue;
+			if (b->rep_edge[e] < 0)
+				b->rep_edge[e] = tt;
+			for (j = 0; j < 3; j++)	/* its place in the triangle */
+				if (b->tri_edge[3 * tt + j] < 0) {
+					b->tri_edge[3 * tt + j] = e;
+					break;
+				}
+		}
+	}
+	b->bvh_nv = g->nv;
+	b->bvh_ntri = g->ntri;
+	free(tri);
+	free(key);
+	return 0;
+fail:
+	free(tri);
+	free(key);
+	free(b->node);
+	b->node = NULL;
 	return -1;
 }
 
 static int
-find_brute(struct broad *b, const struct geom *g, bool want_ee, struct drape_err *err)
+leaf(const struct bvh_node *n)
+{
+	return n->left < 0;
+}
+
+/* A patch of the cloth whose normals stay within 60 degrees of one axis
+ * over the whole step cannot touch itself (Volino & Magnenat-Thalmann
+ * 1994; Provot 1997): its projection along the axis is one to one, and
+ * its triangles that share no vertex stay about a spacing apart, far more
+ * than a cloth's thickness. */
+#define BVH_FLAT_COS 0.5
+
+/* The cone of a triangle's normals over the step, its vertices moving
+ * linearly: n(t) = (1-t)^2 N0 + 2t(1-t) Nm + t^2 N1 in Bernstein form, so
+ * a cone holding the three coefficients holds n(t) (Tang et al. 2009). */
+static void
+leaf_cone(struct bvh_node *nd, const struct geom *g)
+{
+	const int *t = g->tri + 3 * nd->tri;
+	vec3 a0 = v3_load(g->x0 + 3 * t[0]), b0 = v3_load(g->x0 + 3 * t[1]), c0 = v3_load(g->x0 + 3 * t[2]);
+	vec3 a1 = v3_load(g->x1 + 3 * t[0]), b1 = v3_load(g->x1 + 3 * t[1]), c1 = v3_load(g->x1 + 3 * t[2]);
+	vec3 e10 = v3_sub(b0, a0), e20 = v3_sub(c0, a0), e11 = v3_sub(b1, a1), e21 = v3_sub(c1, a1);
+	vec3 nv[3] = { v3_cross(e10, e20), v3_scale(v3_add(v3_cross(e10, e21), v3_cross(e11, e20)),
+	    0.5), v3_cross(e11, e21) }, axis = v3(0, 0, 0);
+	double lo = 1;
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		double l = v3_len(nv[k]);
+
+		if (!(l > 0) || !isfinite(l)) {
+			nd->cos_half = -2;
+			return;
+		}
+		nv[k] = v3_scale(nv[k], 1 / l);
+		axis = v3_add(axis, nv[k]);
+	}
+	if (!(v3_len(axis) > 0)) {
+		nd->cos_half = -2;
+		return;
+	}
+	axis = v3_scale(axis, 1 / v3_len(axis));
+	for (k = 0; k < 3; k++)
+		lo = fmin(lo, v3_dot(axis, nv[k]));
+	v3_store(nd->axis, axis);
+	nd->cos_half = lo;
+}
+
+/* The smallest cone holding cones p and q. */
+static void
+merge_cones(struct bvh_node *nd, const struct bvh_node *p, const struct bvh_node *q)
+{
+	vec3 ap = v3_load(p->axis), aq = v3_load(q->axis), perp;
+	double hp, hq, th, half, lp;
+
+	nd->cos_half = -2;
+	if (p->cos_half < -1 || q->cos_half < -1)
+		return;
+	hp = acos(fmin(1, p->cos_half));
+	hq = acos(fmin(1, q->cos_half));
+	th = acos(fmax(-1, fmin(1, v3_dot(ap, aq))));
+	if (th + hq <= hp) {
+		memcpy(nd->axis, p->axis, sizeof nd->axis);
+		nd->cos_half = p->cos_half;
+		return;
+	}
+	if (th + hp <= hq) {
+		memcpy(nd->axis, q->axis, sizeof nd->axis);
+		nd->cos_half = q->cos_half;
+		return;
+	}
+	half = (th + hp + hq) / 2;
+	if (half >= V3_PI / 2)
+		return;		/* no longer a useful cone */
+	/* the axis turns from ap towards aq by half - hp */
+	perp = v3_madd(aq, ap, -v3_dot(ap, aq));
+	lp = v3_len(perp);
+	if (!(lp > 0))
+		return;
+	perp = v3_scale(perp, 1 / lp);
+	v3_store(nd->axis, v3_add(v3_scale(ap, cos(half - hp)), v3_scale(perp, sin(half - hp))));
+	/* rounding: a little wider */
+	nd->cos_half = cos(fmin(V3_PI / 2, half + 1e-9));
+}
+
+/* The pairs a pair of leaves (triangles ta and tb, their boxes ba and bb)
+ * holds: the vertices each stands for against the other triangle, and the
+ * edges each stands for against the other's. */
+static int
+bvh_leaves(struct broad *b, const struct geom *g, const struct broad_want *want, int ta,
+    const double *ba, int tb, const double *bb)
+{
+	int k, l, pass;
+
+	for (pass = 0; pass < 2; pass++) {
+		int t = pass ? tb : ta, o = pass ? ta : tb;
+		const double *ob = pass ? ba : bb;
+
+		for (k = 0; k < 3; k++) {
+			int v = g->tri[3 * t + k];
+
+			if (b->rep_vertex[v] != t || (v >= g->ncloth && !want->mesh_vertices) ||
+			    tri_has(g, o, v) || vt_static(g, v, o) || !box_overlap(b->qbox + 6 * v, ob))
+				continue;
+			if (push_vt(b, v, o) != 0)
+				return -1;
+		}
+	}
+	for (k = 0; want->edges && k < 3; k++) {
+		int ea = b->tri_edge[3 * ta + k];
+
+		if (ea < 0 || b->rep_edge[ea] != ta)
+			continue;
+		for (l = 0; l < 3; l++) {
+			int eb = b->tri_edge[3 * tb + l];
+
+			if (eb < 0 || b->rep_edge[eb] != tb || ee_skip(g, ea, eb) ||
+			    !box_overlap(b->ebox + 6 * ea, b->ebox + 6 * eb))
+				continue;
+			if (push_ee(b, ea, eb) != 0)
+				return -1;
+		}
+	}
+	return 0;
+}
+
+static int
+push_node_pair(struct broad *b, size_t *top, int x, int y)
+{
+	if (grow((void **)&b->stack, &b->stackcap, *top + 2, sizeof *b->stack) != 0)
+		return -1;
+	b->stack[(*top)++] = x;
+	b->stack[(*top)++] = y;
+	return 0;
+}
+
+/* Every pair of leaves, one under x and one under y (x == y: a subtree
+ * against itself, each pair of distinct leaves once), whose boxes overlap. */
+static int
+bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *want, int x, int y)
+{
+	size_t top = 0;
+	long visits = 0;
+
+	if (push_node_pair(b, &top, x, y) != 0)
+		return -1;
+	while (top > 0) {
+		const struct bvh_node *p, *q;
+
+		y = b->stack[--top];
+		x = b->stack[--top];
+		p = &b->node[x];
+		q = &b->node[y];
+		if ((++visits & 4095) == 0 && stop_asked(b))
+			return -1;
+		if (x == y) {
+			if (leaf(p) || p->cos_half >= BVH_FLAT_COS)
+				continue;	/* one triangle, or a flat patch: nothing */
+			if (push_node_pair(b, &top, p->left, p->left) != 0 ||
+			    push_node_pair(b, &top, p->right, p->right) != 0 ||
+			    push_node_pair(b, &top, p->left, p->right) != 0)
+				return -1;
+			continue;
+		}
+		if (!box_overlap(p->box, q->box))
+			continue;
+		if (leaf(p) && leaf(q)) {
+			if (bvh_leaves(b, g, want, p->tri, p->box, q->tri, q->box) != 0)
+				return -1;
+		} else if (leaf(q) || (!leaf(p) && p->box[3] - p->box[0] + p->box[4] - p->box[1] +
+		    p->box[5] - p->box[2] >= q->box[3] - q->box[0] + q->box[4] - q->box[1] +
+		    q->box[5] - q->box[2])) {
+			if (push_node_pair(b, &top, p->left, y) != 0 ||
+			    push_node_pair(b, &top, p->right, y) != 0)
+				return -1;
+		} else if (push_node_pair(b, &top, x, q->left) != 0 ||
+		    push_node_pair(b, &top, x, q->right) != 0) {
+			return -1;
+		}
+	}
+	return 0;
+}
+
+/* Pairs sorted by vertex (edge a) with each run sorted: a counting sort by
+ * the first element, then sort_runs. */
+static int
+bvh_sort(struct broad *b, const struct geom *g)
+{
+	size_t n = b->nvt > b->nee ? b->nvt : b->nee, i, keys = (size_t)g->nv + g->nedges + 1;
+	size_t *count = calloc(keys + 1, sizeof *count);
+	void *tmp = malloc((n ? n : 1) * sizeof(struct vt_pair));
+	struct vt_pair *tv = tmp;
+	struct ee_pair *te = tmp;
+
+	_Static_assert(sizeof(struct vt_pair) == sizeof(struct ee_pair), "one scratch for both");
+	if (count == NULL || tmp == NULL) {
+		free(count);
+		free(tmp);
+		return -1;
+	}
+	for (i = 0; i < b->nvt; i++)
+		count[b->vt[i].v + 1]++;
+	for (i = 1; i <= (size_t)g->nv; i++)
+		count[i] += count[i - 1];
+	for (i = 0; i < b->nvt; i++)
+		tv[count[b->vt[i].v]++] = b->vt[i];
+	if (b->nvt > 0)		/* memcpy may not take a null array, even for 0 bytes */
+		memcpy(b->vt, tv, b->nvt * sizeof *tv);
+	memset(count, 0, (keys + 1) * sizeof *count);
+	for (i = 0; i < b->nee; i++)
+		count[b->ee[i].a + 1]++;
+	for (i = 1; i <= g->nedges; i++)
+		count[i] += count[i - 1];
+	for (i = 0; i < b->nee; i++)
+		te[count[b->ee[i].a]++] = b->ee[i];
+	if (b->nee > 0)
+		memcpy(b->ee, te, b->nee * sizeof *te);
+	free(count);
+	free(tmp);
+	return sort_runs(b);
+}
+
+static int
+find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_want *want)
+{
+	double skin = GRID_SKIN * cell;
+	int v, k, i;
+	size_t e;
+
+	if (bvh_prepare(b, g) != 0 ||
+	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0 ||
+	    grow((void **)&b->qbox, &b->qboxcap, 6 * (size_t)g->nv, sizeof *b->qbox) != 0 ||
+	    grow((void **)&b->ebox, &b->eboxcap, 6 * (g->nedges + 1), sizeof *b->ebox) != 0)
+		return -1;
+	b->st.cell = cell;
+	for (v = 0; v < g->nv; v++) {
+		double *a = b->allowed + 6 * v;
+
+		box_empty(a);
+		vertex_box(a, g, v);
+		for (k = 0; k < 3; k++) {
+			a[k] -= skin;
+			a[3 + k] += skin;
+		}
+	}
+	/* a vertex's query box, widened if asked to the segments from its
+	 * neighbours at step k (as the grid's) */
+	for (v = 0; v < g->nv; v++) {
+		double *q = b->qbox + 6 * v;
+
+		box_empty(q);
+		allowed_box(q, b, v);
+		for (k = g->vedge_start[v]; want->neighbour_paths && k < g->vedge_start[v + 1]; k++) {
+			const int *en = g->edge + 2 * g->vedge[k];
+
+			allowed_box(q, b, en[0] == v ? en[1] : en[0]);
+		}
+	}
+	for (e = 0; e < g->nedges; e++) {
+		double *eb = b->ebox + 6 * e;
+
+		box_empty(eb);
+		allowed_box(eb, b, g->edge[2 * e]);
+		allowed_box(eb, b, g->edge[2 * e + 1]);
+	}
+	if (b->node == NULL)
+		return 0;
+	/* refit, children after parents: from the last node back */
+	for (i = b->nnodes - 1; i >= 0; i--) {
+		struct bvh_node *n = &b->node[i];
+
+		box_empty(n->box);
+		if (leaf(n)) {
+			for (k = 0; k < 3; k++)
+				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k]),
+				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k] + 3);
+			leaf_cone(n, g);
+		} else {
+			merge_cones(n, &b->node[n->left], &b->node[n->right]);
+			box_add(n->box, b->node[n->left].box);
+			box_add(n->box, b->node[n->left].box + 3);
+			box_add(n->box, b->node[n->right].box);
+			box_add(n->box, b->node[n->right].box + 3);
+		}
+	}
+	if (b->cloth_root >= 0 && want->self &&
+	    bvh_traverse(b, g, want, b->cloth_root, b->cloth_root) != 0)
+		return -1;
+	if (b->cloth_root >= 0 && b->mesh_root >= 0 &&
+	    bvh_traverse(b, g, want, b->cloth_root, b->mesh_root) != 0)
+		return -1;
+	return bvh_sort(b, g);
+}
+
+static int
+find_brute(struct broad *b, const struct geom *g, const struct broad_want *want)
 {
 	size_t t, e, f;
 	int v;
 
 	for (v = 0; v < g->nv; v++) {
-		if (v >= g->ncloth && !want_ee)
+		if (v >= g->ncloth && !want->mesh_vertices)
 			break;
+		if (stop_asked(b))
+			return -1;
 		for (t = 0; t < g->ntri; t++)
 			if (!tri_has(g, (int)t, v) && !vt_static(g, v, (int)t) &&
 			    push_vt(b, v, (int)t) != 0)
-				goto oom;
+				return -1;
 	}
-	for (e = 0; want_ee && e < g->nedges; e++)
+	for (e = 0; want->edges && e < g->nedges; e++) {
+		if (stop_asked(b))
+			return -1;
 		for (f = e + 1; f < g->nedges; f++)
 			if (!ee_skip(g, (int)e, (int)f) && push_ee(b, (int)e, (int)f) != 0)
-				goto oom;
+				return -1;
+	}
 	return 0;
-oom:
-	err_set(err, "broad phase: out of memory");
-	return -1;
 }
 
 int
-broad_find(struct broad *b, const struct geom *g, double cell, enum narrow_mode narrow,
+broad_find(struct broad *b, const struct geom *g, double cell, const struct broad_want *want,
     struct drape_err *err)
 {
-	bool want_ee = narrow == NARROW_CCD;
+	bool too_small = false;
 	int rc;
 
-	if (b->mode == BROAD_GRID && b->valid && b->valid_narrow == narrow &&
+	if (b->mode == BROAD_GRID && b->valid &&
+	    b->valid_want.edges == want->edges && b->valid_want.self == want->self &&
+	    b->valid_want.mesh_vertices == want->mesh_vertices &&
+	    b->valid_want.neighbour_paths == want->neighbour_paths &&
 	    b->valid_cell == cell && b->valid_nv == g->nv && still_allowed(b, g)) {
 		b->st.rebuilt = false;
 		return 0;
 	}
 	b->valid = false;
+	b->stopped = b->over_memory = false;
 	b->nvt = b->nee = 0;
 	memset(&b->st, 0, sizeof b->st);
 	b->st.rebuilt = true;
 	b->st.cell = b->mode == BROAD_BRUTE ? 0 : cell;
 	switch (b->mode) {
 	case BROAD_SEED:
-		rc = find_seed(b, g, cell, want_ee, err);
+		rc = find_seed(b, g, cell, want, &too_small);
 		break;
 	case BROAD_GRID:
-		rc = find_grid(b, g, cell, want_ee, err);
+		rc = find_grid(b, g, cell, want);
+		break;
+	case BROAD_BVH:
+		rc = find_bvh(b, g, cell, want);
 		break;
 	default:
-		rc = find_brute(b, g, want_ee, err);
+		rc = find_brute(b, g, want);
 		break;
 	}
-	if (rc != 0)
+	if (rc == 0 && b->mode == BROAD_GRID)
+		rc = sort_runs(b);	/* found vertex by vertex, each triangle once */
+	if (rc != 0) {
+		b->nvt = b->nee = 0;
+		if (stop_asked(b)) {
+			b->stopped = true;
+			err_set(err, "broad phase: stopped by a signal");
+		} else if (b->over_memory) {
+			err_set(err, "broad phase: this step needs more than the %.0f MB that "
+			    "[collision] memory allows (the scene's motion spans too much space "
+			    "for its cubes, or the memory limit is too low)", b->memory_limit / 1e6);
+		} else if (too_small) {
+			err_set(err, "spatial hash: out of memory, or %g m cubes are too small for "
+			    "the scene's extent", cell);
+		} else {
+			err_set(err, "broad phase: out of memory");
+		}
 		return -1;
+	}
 	if (b->mode == BROAD_SEED)
 		canonical(b);
-	else if (b->mode == BROAD_GRID)
-		sort_runs(b);	/* found vertex by vertex, each triangle once */
 	b->st.vt_pairs = (long)b->nvt;
 	b->st.ee_pairs = (long)b->nee;
 	if (b->mode == BROAD_GRID) {
 		b->valid = true;
-		b->valid_narrow = narrow;
+		b->valid_want = *want;
 		b->valid_cell = cell;
 		b->valid_nv = g->nv;
 	}

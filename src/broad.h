@@ -10,16 +10,23 @@
 #ifndef DRAPE_BROAD_H
 #define DRAPE_BROAD_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 
 #include "err.h"
 #include "hash.h"
-#include "scene.h"
 
 /* The geometry contacts are sought in: the cloth's nodes first, then the
  * vertices of obstacle meshes (which never move); the same for triangles
  * and edges. x0 is the consistent state k, x1 the predicted state k+1. */
+enum broad_mode { BROAD_SEED, BROAD_GRID, BROAD_BRUTE, BROAD_BVH };
+extern const char *const broad_mode_name[];	/* NULL-terminated, for the parser */
+
+/* 1 if the mode fills a spatial hash (seed with nodes, grid with boxes);
+ * bvh finds grid's pairs with a tree of boxes instead (broad.c). */
+bool broad_uses_hash(enum broad_mode mode);
+
 struct geom {
 	int nv, ncloth;		/* vertices; the first ncloth are cloth nodes */
 	const double *x0, *x1;
@@ -37,6 +44,27 @@ struct geom {
 	const double *vbox;
 };
 
+/* What a caller needs found, beside each cloth node against the triangles
+ * near it. */
+struct broad_want {
+	bool self;		/* the cloth against itself (else against the meshes only;
+				 * bvh only: the others find all and leave the choice) */
+	bool edges;		/* edge-edge pairs */
+	bool mesh_vertices;	/* obstacle mesh vertices against the triangles too */
+	/* a node's box includes the segments from its neighbours at step k to
+	 * it (the seed test's sliding case, end of §3.2) */
+	bool neighbour_paths;
+};
+
+struct bvh_node {
+	double box[6];
+	/* a cone holding every normal of the subtree's triangles over the
+	 * step: axis and cosine of its half-angle (< -1: no cone) */
+	double axis[3], cos_half;
+	int left, right;	/* children, or -1 for a leaf */
+	int tri;		/* a leaf's triangle */
+};
+
 struct vt_pair {
 	int v, t;
 };
@@ -52,10 +80,18 @@ struct broad_stats {
 	long vt_pairs, ee_pairs;	/* what the narrow phase gets */
 	bool rebuilt;		/* grid: the pairs were found anew this step (else
 				 * the last step's still hold; hash is that fill's) */
+	long big;		/* grid: boxes kept out of the hash for their size */
 };
 
 struct broad {
 	enum broad_mode mode;
+	/* what a step may take: the bytes of its hash fills and pair lists
+	 * (0: no limit), and a flag that stops it (NULL: none), polled in the
+	 * long loops so that a signal is honoured within the step */
+	double memory_limit;
+	const volatile sig_atomic_t *stop;
+	bool stopped;		/* the last broad_find gave up for stop */
+	bool over_memory;	/* or for the memory limit */
 	struct spatial_hash hash;	/* seed: nodes; grid: triangles */
 	struct spatial_hash hash_edges;	/* grid with ccd: edges */
 	struct vt_pair *vt;
@@ -68,8 +104,27 @@ struct broad {
 	size_t boxcap;
 	double *allowed;	/* grid: per vertex, the widened box its pairs hold for */
 	size_t allowedcap;
+	/* bvh: a tree of boxes over the cloth's triangles and one over the
+	 * meshes', built once (the topology is fixed) and refitted; each
+	 * vertex and edge is found through one of its triangles only */
+	struct bvh_node *node;
+	int nnodes, cloth_root, mesh_root;
+	int *rep_vertex, *rep_edge;	/* the triangle standing for each */
+	int *tri_edge;		/* per triangle: its 3 edges */
+	double *ebox;		/* per edge: its box */
+	size_t eboxcap;
+	int *stack;
+	size_t stackcap;
+	double *qbox;		/* per vertex: the box it is looked up with */
+	size_t qboxcap;
+	int bvh_nv;		/* the geometry the tree was built for */
+	size_t bvh_ntri;
+	int *big;		/* grid: triangles, then edges, too big for the hash */
+	size_t nbig_tri, nbig, bigcap;
+	unsigned char *is_big;	/* per box */
+	size_t is_bigcap;
 	bool valid;		/* grid: the pairs may be kept (see broad.c) */
-	enum narrow_mode valid_narrow;
+	struct broad_want valid_want;
 	double valid_cell;
 	int valid_nv;
 	struct broad_stats st;
@@ -78,11 +133,11 @@ struct broad {
 void broad_init(struct broad *b, enum broad_mode mode);
 void broad_free(struct broad *b);
 
-/* Fills b->vt, and for the ccd narrow phase b->ee, sorted by vertex (edge)
- * then triangle (edge), without duplicates: the pairs that narrow phase may
- * find a contact in. cell is L_ce. Returns 0, or -1 with a message (out of
- * memory, or a cell too small for the scene's extent). */
-int broad_find(struct broad *b, const struct geom *g, double cell, enum narrow_mode narrow,
+/* Fills b->vt, and b->ee if want->edges, sorted by vertex (edge) then
+ * triangle (edge), without duplicates: every pair a narrow phase may find a
+ * contact in over the motion of g. cell is L_ce. Returns 0, or -1 with a
+ * message (out of memory, or a cell too small for the scene's extent). */
+int broad_find(struct broad *b, const struct geom *g, double cell, const struct broad_want *want,
     struct drape_err *err);
 
 #endif

@@ -6,6 +6,7 @@
  * stores G*t*h^2*gamma^2/2 of shear in its four corners, and a hinge stores
  * B*w*theta^2/(2h) of bending, theta/h being the curvature. */
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -374,8 +375,8 @@ cloth_clamp_hinges(struct cloth *cl, const unsigned char *held)
 	}
 }
 
-double
-cloth_omega_bound(const struct cloth *cl)
+static double
+omega_bound(const struct cloth *cl, bool springs, bool corners)
 {
 	/* Row sums of |K| per node: for an element of stiffness k whose
 	 * generalised coordinate has gradient norms g_a at its nodes, node a
@@ -388,11 +389,11 @@ cloth_omega_bound(const struct cloth *cl)
 
 	if (row == NULL)
 		return NAN;
-	for (e = 0; e < cl->nsprings; e++) {
+	for (e = 0; springs && e < cl->nsprings; e++) {
 		row[cl->springs[e].a] += 2 * cl->springs[e].k;
 		row[cl->springs[e].b] += 2 * cl->springs[e].k;
 	}
-	for (e = 0; e < cl->ncorners; e++) {
+	for (e = 0; corners && e < cl->ncorners; e++) {
 		double s = (2 + sqrt(2)) / h, k = cl->corners[e].k;
 
 		row[cl->corners[e].a] += k * s / h;
@@ -411,4 +412,22 @@ cloth_omega_bound(const struct cloth *cl)
 			w2 = row[i] / cl->mass[i];
 	free(row);
 	return sqrt(w2);
+}
+
+double
+cloth_omega_bound(const struct cloth *cl)
+{
+	return omega_bound(cl, true, true);
+}
+
+double
+cloth_omega_bound_soft(const struct cloth *cl)
+{
+	return omega_bound(cl, false, true);
+}
+
+double
+cloth_omega_bound_bend(const struct cloth *cl)
+{
+	return omega_bound(cl, false, false);
 }

@@ -4,6 +4,9 @@
 
 #include <stdio.h>
 
+#include "scene.h"
+#include "stepper.h"
+
 /* Exit statuses shared by every subcommand. */
 enum {
 	EXIT_OK = 0,
@@ -22,10 +25,29 @@ int cmd_info(int argc, char **argv);
 int cmd_events(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
 void usage(FILE *f);
+
+struct step_failure;
+/* Says on stderr that a run of path stopped ("drape CMD: PATH: ...") and
+ * returns the exit status it calls for: EXIT_BLOWUP, or EXIT_RUNTIME for an
+ * error that is not the simulation's. */
+int cmd_step_failed(const char *cmd, const char *path, const struct step_failure *f);
 
 /* After getopt_long returned '?' for command cmd: says which option was
  * unknown or lacked its value, then the usage; returns EXIT_USAGE. */
 int cmd_option_error(const char *cmd, char **argv);
+
+/* stepper_new, showing the stages of the setup on the standard error
+ * when it is a terminal and the cloth has CMD_SETUP_SHOWN_NODES nodes or
+ * more (the line is cleared when setup ends). */
+#define CMD_SETUP_SHOWN_NODES (1L << 18)
+struct stepper *cmd_stepper_new(const struct scene *sc, struct drape_err *err);
+
+/* The run length that --until T (> 0 when given) and --dt DT (> 0 when
+ * given) make of the scene: at most SCENE_MAX_STEPS steps and
+ * SCENE_MAX_FRAMES frames. EXIT_OK, or EXIT_USAGE after saying which
+ * option is out of range. */
+int cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt);
 
 #endif

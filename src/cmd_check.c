@@ -43,30 +43,32 @@ check_obj(const char *path)
 }
 
 static int
-check_scene(const char *path, long every)
+check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 {
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
+	struct stepper_report rep;
 	struct drape_err err;
-	struct blowup bl;
+	struct step_failure fail;
 	struct check_result r;
 	double frame, next = 0;
 	long k = 0, frames = 0, worst_pairs = 0, worst_inside = 0, bad_frames = 0;
 	int rc = EXIT_OK;
 
-	if (scene_load(&sc, path, &err) != 0) {
+	if (scene_load_set(&sc, path, sets, nsets, &err) != 0) {
 		fprintf(stderr, "drape check: %s\n", err.msg);
 		return EXIT_USAGE;
 	}
-	if (stepper_init(&st, &sc, &err) != 0) {
+	if ((st = cmd_stepper_new(&sc, &err)) == NULL) {
 		fprintf(stderr, "drape check: %s\n", err.msg);
 		scene_free(&sc);
 		return EXIT_USAGE;
 	}
 	frame = 1 / sc.output_rate;
 	for (;;) {
-		if (st.t >= next - 1e-12 * frame || stepper_done(&st)) {
-			if (check_state(&sc, &st.cl, stepper_x(&st), &r) != 0) {
+		stepper_report(st, &rep);
+		if (rep.t >= next - 1e-12 * frame || stepper_done(st)) {
+			if (check_state(&sc, &stepper_network(st)->cl, stepper_x(st), &r) != 0) {
 				fprintf(stderr, "drape check: %s: out of memory\n", path);
 				rc = EXIT_RUNTIME;
 				break;
@@ -74,7 +76,7 @@ check_scene(const char *path, long every)
 			frames++;
 			if (r.pairs > 0 || r.inside > 0) {
 				bad_frames++;
-				printf("%s\tt=%.6g\tstep=%ld\t-\t%ld\t%ld\n", path, st.t, st.step,
+				printf("%s\tt=%.6g\tstep=%ld\t-\t%ld\t%ld\n", path, rep.t, rep.step,
 				    r.pairs, r.inside);
 			}
 			worst_pairs = r.pairs > worst_pairs ? r.pairs : worst_pairs;
@@ -82,12 +84,10 @@ check_scene(const char *path, long every)
 			k++;
 			next = (double)(k * every) * frame;
 		}
-		if (stepper_done(&st))
+		if (stepper_done(st))
 			break;
-		if (stepper_step(&st, &bl) != 0) {
-			fprintf(stderr, "drape check: %s: blow-up at step %ld (t = %.6g s): %s\n",
-			    path, bl.step, bl.t, bl.why);
-			rc = EXIT_BLOWUP;
+		if (stepper_step(st, &fail) != STEP_OK) {
+			rc = cmd_step_failed("check", path, &fail);
 			break;
 		}
 	}
@@ -96,39 +96,45 @@ check_scene(const char *path, long every)
 		    worst_inside);
 	if (rc == EXIT_OK && bad_frames > 0)
 		rc = EXIT_FOUND;
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
 	return rc;
 }
 
-int
-cmd_check(int argc, char **argv)
+/* The options into *every and sets; an exit status, or -1 after --help. */
+static int
+check_options(int argc, char **argv, long *every, const char **sets, size_t *nsets)
 {
 	static const struct option longopts[] = {
 		{ "every", required_argument, NULL, 'e' },
+		{ "set", required_argument, NULL, 's' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
-	long every = 10;
 	char *end;
-	int ch, i, rc = EXIT_OK;
+	int ch, i;
 
 	optind = 1;
 	while ((ch = getopt_long(argc, argv, "e:h", longopts, NULL)) != -1) {
 		switch (ch) {
 		case 'e':
-			every = strtol(optarg, &end, 10);
-			if (*optarg == '\0' || *end != '\0' || every < 1) {
+			*every = strtol(optarg, &end, 10);
+			if (*optarg == '\0' || *end != '\0' || *every < 1) {
 				fprintf(stderr, "drape check: --every '%s': expected a whole number "
 				    "of 1 or more\n", optarg);
 				return EXIT_USAGE;
 			}
 			break;
+		case 's':
+			sets[(*nsets)++] = optarg;
+			break;
 		case 'h':
-			printf("usage: drape check [--every N] SCENE|OBJ...\n");
-			return EXIT_OK;
+			printf("usage: drape check [--every N] [--set SECTION.KEY=VALUE]... "
+			    "SCENE|OBJ...\n");
+			return -1;
 		default:
-			fprintf(stderr, "usage: drape check [--every N] SCENE|OBJ...\n");
+			fprintf(stderr, "usage: drape check [--every N] [--set SECTION.KEY=VALUE]... "
+			    "SCENE|OBJ...\n");
 			return EXIT_USAGE;
 		}
 	}
@@ -136,16 +142,74 @@ cmd_check(int argc, char **argv)
 		fprintf(stderr, "drape check: expected scene or OBJ files\n");
 		return EXIT_USAGE;
 	}
+	for (i = optind; i < argc; i++)
+		if (*nsets > 0 && ends_with(argv[i], ".obj")) {
+			fprintf(stderr, "drape check: --set '%s': %s is an OBJ, which has no "
+			    "values to set; expected scene files\n", sets[0], argv[i]);
+			return EXIT_USAGE;
+		}
+	return EXIT_OK;
+}
+
+/* The --set options against every scene before anything is printed, so
+ * that a bad one is a usage error with nothing on stdout, as it is for
+ * run and snapshot: each scene is parsed with them, and an error that
+ * names an option (override.h: "--set SPEC: ...") stops the command. A
+ * scene's own errors are left to its turn, after the header, as without
+ * --set. EXIT_OK, or EXIT_USAGE once the error is said. */
+static int
+check_sets(int argc, char **argv, const char *const *sets, size_t nsets)
+{
+	struct scene sc;
+	struct drape_err err;
+	int i;
+
+	for (i = optind; nsets > 0 && i < argc; i++) {
+		if (ends_with(argv[i], ".obj"))
+			continue;
+		if (scene_load_set(&sc, argv[i], sets, nsets, &err) == 0) {
+			scene_free(&sc);
+			continue;
+		}
+		if (strncmp(err.msg, "--set ", 6) == 0) {
+			fprintf(stderr, "drape check: %s\n", err.msg);
+			return EXIT_USAGE;
+		}
+	}
+	return EXIT_OK;
+}
+
+int
+cmd_check(int argc, char **argv)
+{
+	long every = 10;
+	const char **sets;
+	size_t nsets = 0;
+	int i, rc;
+
+	if ((sets = calloc((size_t)argc, sizeof *sets)) == NULL) {
+		fprintf(stderr, "drape check: out of memory\n");
+		return EXIT_RUNTIME;
+	}
+	if ((rc = check_options(argc, argv, &every, sets, &nsets)) != EXIT_OK) {
+		free(sets);
+		return rc < 0 ? EXIT_OK : rc;
+	}
+	if ((rc = check_sets(argc, argv, sets, nsets)) != EXIT_OK) {
+		free(sets);
+		return rc;
+	}
 	/* columns: file, kind, frames audited, frames with a fault, the most
 	 * intersecting pairs in one frame, the most nodes inside obstacles */
 	printf("file\tkind\tframes\tbad_frames\tpairs\tinside\n");
 	for (i = optind; i < argc; i++) {
 		int r = ends_with(argv[i], ".obj") ? check_obj(argv[i]) :
-		    check_scene(argv[i], every);
+		    check_scene(argv[i], every, sets, nsets);
 
 		if (r != EXIT_OK && (rc == EXIT_OK || rc == EXIT_FOUND))
 			rc = r;
 	}
+	free(sets);
 	if (fflush(stdout) != 0 || ferror(stdout)) {
 		fprintf(stderr, "drape check: cannot write the output\n");
 		return EXIT_RUNTIME;

@@ -2,7 +2,9 @@
  * [--obj-seq DIR]`: a replay's frames for Blender: a Mesh Cache (PC2), the
  * mesh it deforms (the first frame, in the same vertex order) and OBJs. */
 #include <errno.h>
+#include <float.h>
 #include <getopt.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -32,6 +34,10 @@ write_obj_frame(const char *path, const float *x, const struct replay_meta *m,
 	return rc;
 }
 
+/* An exit status: EXIT_USAGE when the replay holds no frame that can be
+ * exported (none intact, a chunk that passes its CRC but does not decode,
+ * a frame time out of range), EXIT_RUNTIME when an output cannot be
+ * written; what was being written is then removed. */
 static int
 export(const struct replay *r, const char *pc2, const char *obj, const char *seq,
     struct drape_err *err)
@@ -42,22 +48,31 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 	size_t i, k, frame = 0, n3 = 3 * (size_t)m->nodes;
 	bool open_pc2 = false, first = true;
 	char path[4096];
+	int rc = EXIT_RUNTIME;
 
 	for (i = 0; i < r->nchunks; i++) {
 		if (r->chunk[i].kind != REPLAY_FRAMES)
 			continue;
-		if (replay_read_frames(r, i, &fr, err) != 0)
+		if (replay_read_frames(r, i, &fr, err) != 0) {
+			rc = EXIT_USAGE;
 			goto fail;
+		}
 		for (k = 0; k < fr.count; k++, frame++) {
 			const float *x = fr.x + k * n3;
 
 			if (first) {
+				double start = fr.t[k] * m->output_rate;
+
 				first = false;
+				if (!(fabs(start) <= FLT_MAX)) {
+					err_set(err, "its first frame's time, %g s, is out of range", fr.t[k]);
+					rc = EXIT_USAGE;
+					goto fail_fr;
+				}
 				if (obj != NULL && write_obj_frame(obj, x, m, err) != 0)
 					goto fail_fr;
 				if (pc2 != NULL) {
-					if (pc2_open(&pw, pc2, (int)m->nodes,
-					    (float)(fr.t[k] * m->output_rate), 1.0f, err) != 0)
+					if (pc2_open(&pw, pc2, (int)m->nodes, (float)start, 1.0f, err) != 0)
 						goto fail_fr;
 					open_pc2 = true;
 				}
@@ -78,17 +93,17 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 	}
 	if (first) {
 		err_set(err, "no intact frame to export");
-		return -1;
+		return EXIT_USAGE;
 	}
 	if (open_pc2 && pc2_close(&pw, err) != 0)
-		return -1;
-	return 0;
+		return EXIT_RUNTIME;
+	return EXIT_OK;
 fail_fr:
 	replay_frames_free(&fr);
 fail:
 	if (open_pc2)
 		pc2_abort(&pw);
-	return -1;
+	return rc;
 }
 
 int
@@ -150,10 +165,8 @@ cmd_export(int argc, char **argv)
 	if (r.cut || r.nbad > 0)
 		fprintf(stderr, "drape export: %s: %s; exporting the %zu intact frames\n",
 		    argv[optind], r.cut ? "cut short" : "some chunks have a bad CRC", r.nframes);
-	if (export(&r, pc2, obj, seq, &err) != 0) {
+	if ((rc = export(&r, pc2, obj, seq, &err)) != EXIT_OK)
 		fprintf(stderr, "drape export: %s: %s\n", argv[optind], err.msg);
-		rc = EXIT_RUNTIME;
-	}
 	replay_close(&r);
 	return rc;
 }

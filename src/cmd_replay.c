@@ -16,6 +16,9 @@ cmd_replay(int argc, char **argv)
 	static const struct option longopts[] = {
 		{ "no-color", no_argument, NULL, 'C' },
 		{ "delay", required_argument, NULL, 'd' },
+		{ "ascii", no_argument, NULL, 'A' },
+		{ "unicode", no_argument, NULL, 'U' },
+		{ "blocks", no_argument, NULL, 'B' },
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
@@ -32,6 +35,15 @@ cmd_replay(int argc, char **argv)
 		switch (c) {
 		case 'C':
 			topt.color = false;
+			break;
+		case 'A':
+			topt.glyphs = GLYPHS_ASCII;
+			break;
+		case 'U':
+			topt.glyphs = GLYPHS_BRAILLE;
+			break;
+		case 'B':
+			topt.glyphs = GLYPHS_BLOCKS;
 			break;
 		case 'd':
 			if (tui_parse_delay(optarg, &topt.delay) != 0) {

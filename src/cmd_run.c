@@ -1,18 +1,16 @@
 /* cmd_run.c: `drape run` and `drape SCENE`: the TUI on a live run when on a
  * terminal, else a headless run with progress and a summary; a run may
  * record a replay (--record, in the TUI too), and a headless one continue
- * one from a keyframe (--resume). */
+ * one from a keyframe (--resume). --set changes the scene's values as its
+ * file would (override.h). The summary is the run's record (run_record.h),
+ * as text (run_summary.c), JSON or CSV. */
 #include <errno.h>
 #include <getopt.h>
-#include <inttypes.h>
-#include <limits.h>
-#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "config.h"
@@ -21,17 +19,18 @@
 #include "obj.h"
 #include "record.h"
 #include "replay.h"
+#include "replay_run.h"
+#include "run_record.h"
+#include "run_summary.h"
 #include "scene.h"
-#include "shadow.h"
 #include "source.h"
 #include "stepper.h"
 #include "tui.h"
 #include "units.h"
 
-#define DRAPE_RASTER 0.5e-3	/* m: the shadow's cells, 1/600 of a 30 cm specimen */
-
-/* Set by SIGINT and SIGTERM: the run stops after its step and closes its
- * replay properly. */
+/* Set by SIGINT, SIGTERM and SIGHUP (an SSH session dropped): the run
+ * gives up the step it is in (the stepper polls this within a step), closes
+ * its replay properly and writes what it was asked to. */
 static volatile sig_atomic_t interrupted;
 
 static void
@@ -51,229 +50,168 @@ catch_signals(void)
 	sigemptyset(&sa.sa_mask);
 	sigaction(SIGINT, &sa, NULL);
 	sigaction(SIGTERM, &sa, NULL);
+	sigaction(SIGHUP, &sa, NULL);
+	/* a terminal gone with the session: writes fail, they do not kill */
+	signal(SIGPIPE, SIG_IGN);
 }
 
-static void
-progress(const struct stepper *st, double wall)
+static const char *
+signal_word(int sig)
 {
-	double rate = wall > 0 ? st->t / wall : 0;
-
-	fprintf(stderr, "\r  t %.4f / %.4f s   step %ld   %.0f steps/s   ETA %.0f s   ",
-	    st->t, st->t_end, st->step, wall > 0 ? (double)st->step / wall : 0,
-	    rate > 0 ? (st->t_end - st->t) / rate : 0);
+	return sig == SIGINT ? "interrupted" : sig == SIGHUP ? "hung up" : "terminated";
 }
 
-/* The spatial hash's statistics of every fill (seed fills it every step;
- * grid when its pairs no longer hold): sums for the means, the largest
- * probe, the histograms added up. */
-struct hash_totals {
-	long steps;
-	double entries, cubes, shared, load, probe_mean;
-	int probe_max;
-	long hist[HASH_HIST];
+struct run_opts {
+	const char *scene, *final_obj, *record, *resume;
+	double until, dt;	/* < 0: not given; dt 0: auto */
+	int integrator;		/* < 0: not given */
+	bool headless;
+	struct tui_opts tui;
+	long keyframe_every;	/* 0: the default */
+	const char **sets;	/* --set, in order (room for argc of them) */
+	size_t nsets;
+	enum run_format summary;
 };
 
-static bool
-uses_hash(const struct stepper *st)
-{
-	return st->col.active && st->col.pairs &&
-	    (st->sc->col.broad == BROAD_SEED || st->sc->col.broad == BROAD_GRID);
-}
-
-static void
-hash_add(struct hash_totals *ht, const struct hash_stats *hs)
-{
-	int k;
-
-	ht->steps++;
-	ht->entries += (double)hs->entries;
-	ht->cubes += (double)hs->cubes;
-	ht->shared += (double)hs->shared;
-	ht->load += hs->load;
-	ht->probe_mean += hs->probe_mean;
-	if (hs->probe_max > ht->probe_max)
-		ht->probe_max = hs->probe_max;
-	for (k = 0; k < HASH_HIST; k++)
-		ht->hist[k] += hs->hist[k];
-}
-
-static void
-hash_summary(const struct hash_totals *ht, long steps)
-{
-	double n = ht->steps > 0 ? (double)ht->steps : 1;
-	int k;
-
-	printf("hash         per fill %.1f items, %.1f cubes (%.1f with >= 2), load %.3f, "
-	    "probes mean %.3f max %d; %ld fills in %ld steps\n", ht->entries / n, ht->cubes / n,
-	    ht->shared / n, ht->load / n, ht->probe_mean / n, ht->probe_max, ht->steps, steps);
-	printf("hash histogram");
-	for (k = 0; k < HASH_HIST; k++)
-		printf(" %d%s:%ld", k + 1, k + 1 == HASH_HIST ? "+" : "", ht->hist[k]);
-	printf(" (cubes by items, all fills)\n");
-}
-
-/* The Cusick drape test's coefficient, for a disc-shaped specimen on the
- * scene's first [disc]. */
-static void
-drape_summary(const struct stepper *st)
-{
-	const struct scene *sc = st->sc;
-	const struct cloth *cl = &st->cl;
-	const struct obstacle *disc = NULL;
-	double shadow, support, flat, cell;
-	size_t o;
-
-	for (o = 0; o < sc->nobstacles && disc == NULL; o++)
-		if (sc->obstacles[o].kind == OBSTACLE_DISC)
-			disc = &sc->obstacles[o];
-	if (disc == NULL || cl->shape != SHAPE_DISC)
-		return;
-	if (shadow_area(stepper_x(st), cl->tri, cl->ntri, DRAPE_RASTER, &shadow, &cell) != 0) {
-		fprintf(stderr, "drape: no drape coefficient: out of memory for its shadow\n");
-		return;
-	}
-	support = V3_PI * disc->radius * disc->radius;
-	flat = mesh_area(cl->x0, cl->tri, cl->ntri);
-	printf("drape coefficient %.4f (shadow %.6f m2, support disc %.6f m2, flat specimen "
-	    "%.6f m2; %.2g mm raster)\n", drape_coefficient(shadow, support, flat), shadow,
-	    support, flat, cell * 1e3);
-}
-
-static void
-summary(const struct stepper *st, double wall, const struct hash_totals *ht)
-{
-	const struct scene *sc = st->sc;
-	const struct cloth *cl = &st->cl;
-	struct energy e;
-	static const char *dir[2] = { "warp", "weft" };
-	int d;
-
-	stepper_energy(st, &e);
-	printf("scene        %s (%s)\n", sc->name, sc->path);
-	if (cl->shape == SHAPE_SQUARE)
-		printf("network      %d x %d nodes", cl->nu, cl->nv);
-	else
-		printf("network      %s of %d nodes in a %d x %d grid", cloth_shape_name[cl->shape],
-		    cl->n, cl->nu, cl->nv);
-	printf(", %zu springs, %zu shear corners, %zu bending hinges, %zu triangles\n",
-	    cl->nsprings, cl->ncorners, cl->nhinges, cl->ntri);
-	for (d = 0; d < 2; d++)
-		printf("bending %s %.4g N*m (%s)\n", dir[d], sc->mat.bending[d],
-		    sc->mat.bending_derived[d] ? "derived: modulus*thickness^3/12" : "given");
-	printf("integrator   %s, dt %.4g s (%s; omega <= %.4g rad/s)\n",
-	    integrator_name(sc->integrator), st->dt_set, st->dt_auto ? "auto" : "given",
-	    st->omega);
-	if (sc->integrator == INTEG_IMPLICIT_EULER)
-		printf("steps        %ld (%ld solves, %.1f CG iterations each, %ld unconverged",
-		    st->step, st->im.solves, st->im.solves > 0 ?
-		    (double)st->im.iters / (double)st->im.solves : 0.0, st->im.unconverged);
-	else
-		printf("steps        %ld (%ld force evaluations", st->step, st->in.nfev);
-	if (sc->integrator == INTEG_DOPRI5)
-		printf(", %ld steps rejected", st->in.rejected);
-	printf(")\n");
-	printf("simulated    %.6g s\n", st->t);
-	printf("wall time    %.3f s\n", wall);
-	printf("speed        %.4g x real time, %.0f steps/s\n", wall > 0 ? st->t / wall : 0,
-	    wall > 0 ? (double)st->step / wall : 0);
-	printf("energy       %.6e J (kinetic %.4e, gravity %.4e, stretch %.4e, shear %.4e, "
-	    "bend %.4e, load %.4e)\n", energy_total(&e), e.kinetic, e.gravity, e.stretch,
-	    e.shear, e.bend, e.load);
-	if (st->col.active) {
-		const struct collide_stats *c = &st->col.total;
-		double steps = st->step > 0 ? (double)st->step : 1;
-		int k;
-
-		printf("collisions   broad %s, narrow %s, position %s, self %s, cell %.4g m\n",
-		    broad_mode_name[sc->col.broad], narrow_mode_name[sc->col.narrow],
-		    position_policy_name[sc->col.position], sc->col.self ? "on" : "off",
-		    st->col.cell);
-		printf("per step     %.1f node pairs, %.1f vertex-triangle and %.1f edge-edge "
-		    "pairs, %.1f narrow tests\n", (double)c->broad.node_pairs / steps,
-		    (double)c->broad.vt_pairs / steps, (double)c->broad.ee_pairs / steps,
-		    (double)c->narrow_tests / steps);
-		printf("contacts     ");
-		for (k = 0; k < CONTACT_NTYPES; k++)
-			printf("%s%s %ld", k ? ", " : "", contact_type_name[k], c->contacts[k]);
-		printf("\n");
-		printf("corrections  %ld (%ld put back to step k; at most %d passes in a step; "
-		    "%ld steps unresolved)\n", c->corrections, c->frozen, c->passes, c->unresolved);
-		if (uses_hash(st))
-			hash_summary(ht, st->step);
-	}
-	drape_summary(st);
-	printf("state hash   %016" PRIx64 "\n", stepper_hash(st));
-}
-
-static int
-write_final(const struct stepper *st, const char *path)
-{
-	struct drape_err err;
-
-	if (path == NULL)
-		return EXIT_OK;
-	if (obj_write(path, stepper_x(st), st->cl.n, st->cl.tri, st->cl.ntri, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		return EXIT_RUNTIME;
-	}
-	return EXIT_OK;
-}
-
-/* The front end on the live run, recording into record from the start if
- * not NULL; its messages once the terminal is back. A recording still on
- * at the end (q, a signal) is closed here. */
-static int
-run_tui(struct stepper *st, const struct tui_opts *opt, const char *record,
-    long keyframe_every)
-{
-	struct source src;
-	struct source_live lv;
-	struct tui_result res;
-	char why[600], *name = NULL;
-	const char *rec;
-	int rc = EXIT_OK;
-
-	source_live(&src, &lv, st);
-	lv.keyframe_every = keyframe_every;
-	if (record != NULL && src.record(src.ctx, record, why, sizeof why) != 0) {
-		fprintf(stderr, "drape: --record: %s\n", why);
-		source_live_free(&lv);
-		return EXIT_RUNTIME;
-	}
-	tui_run(&src, opt, &res);
-	if ((rec = src.recording(src.ctx, NULL)) != NULL && (name = strdup(rec)) == NULL)
-		rc = EXIT_RUNTIME;
-	if (rec != NULL && src.record(src.ctx, NULL, why, sizeof why) != 0) {
-		fprintf(stderr, "drape: %s\n", why);
-		rc = EXIT_RUNTIME;
-	} else if (name != NULL) {
-		fprintf(stderr, "drape: recorded %s (to step %ld)\n", name, st->step);
-	}
-	free(name);
-	source_live_free(&lv);
-	switch (res.end) {
-	case TUI_ERROR:
-		fprintf(stderr, "drape: %s\n", res.why);
-		return EXIT_RUNTIME;
-	case TUI_SIGNAL:
-		return 128 + res.signo;
-	case TUI_QUIT:
-		break;
-	}
-	if (rc != EXIT_OK)
-		return rc;
-	if (res.blown_up) {
-		fprintf(stderr, "drape: %s: %s\n", st->sc->path, res.why);
-		return EXIT_BLOWUP;
-	}
-	return EXIT_OK;
-}
+/* How a headless run's stepping ended, for its record. */
+struct run_end {
+	enum run_outcome outcome;
+	bool failed;
+	struct step_failure f;
+	double wall;
+};
 
 static int
 bad_option(const char *opt, const char *val, const char *what)
 {
 	fprintf(stderr, "drape run: %s '%s': expected %s\n", opt, val, what);
 	return EXIT_USAGE;
+}
+
+/* One option's value into o; an exit status. */
+static int
+take_option(struct run_opts *o, int c, const char *arg)
+{
+	char why[200], *end;
+	enum integrator_kind k;
+
+	switch (c) {
+	case 'H': o->headless = true; break;
+	case 'C': o->tui.color = false; break;
+	case 'p': o->tui.paused = true; break;
+	case 'A': o->tui.glyphs = GLYPHS_ASCII; break;
+	case 'U': o->tui.glyphs = GLYPHS_BRAILLE; break;
+	case 'B': o->tui.glyphs = GLYPHS_BLOCKS; break;
+	case 'o': o->final_obj = arg; break;
+	case 'r': o->record = arg; break;
+	case 'R': o->resume = arg; break;
+	case 's': o->sets[o->nsets++] = arg; break;
+	case 'S':
+		if (strcmp(arg, "text") == 0)
+			o->summary = RUN_TEXT;
+		else if (strcmp(arg, "json") == 0)
+			o->summary = RUN_JSON;
+		else if (strcmp(arg, "csv") == 0)
+			o->summary = RUN_CSV;
+		else
+			return bad_option("--summary", arg, "text, json or csv");
+		if (o->summary != RUN_TEXT)
+			o->headless = true;	/* a record is for a program, not a screen */
+		break;
+	case 'd':
+		if (tui_parse_delay(arg, &o->tui.delay) != 0)
+			return bad_option("--delay", arg,
+			    "tenths of a second, a whole number from 1 to 100");
+		break;
+	case 'u':
+		if (units_parse(arg, DIM_TIME, &o->until, 1, why, sizeof why) != 0 || !(o->until > 0))
+			return bad_option("--until", arg, "a time greater than 0");
+		break;
+	case 'i':
+		if (integrator_from_name(arg, &k) != 0) {
+			char names[200];
+
+			integrator_names(names, sizeof names);
+			return bad_option("--integrator", arg, names);
+		}
+		o->integrator = (int)k;
+		break;
+	case 'T':
+		if (strcmp(arg, "auto") == 0)
+			o->dt = 0;
+		else if (units_parse(arg, DIM_TIME, &o->dt, 1, why, sizeof why) != 0 || !(o->dt > 0))
+			return bad_option("--dt", arg, "'auto' or a time greater than 0");
+		break;
+	case 'k':
+		errno = 0;
+		o->keyframe_every = strtol(arg, &end, 10);
+		if (errno != 0 || end == arg || *end != '\0' || o->keyframe_every < 1)
+			return bad_option("--keyframe-every", arg, "a whole number of steps from 1");
+		break;
+	}
+	return EXIT_OK;
+}
+
+/* Fills o from the command line; an exit status, or -1 after --help. */
+static int
+parse_options(int argc, char **argv, struct run_opts *o)
+{
+	static const struct option longopts[] = {
+		{ "headless", no_argument, NULL, 'H' },
+		{ "until", required_argument, NULL, 'u' },
+		{ "integrator", required_argument, NULL, 'i' },
+		{ "dt", required_argument, NULL, 'T' },
+		{ "no-color", no_argument, NULL, 'C' },
+		{ "delay", required_argument, NULL, 'd' },
+		{ "paused", no_argument, NULL, 'p' },
+		{ "final-obj", required_argument, NULL, 'o' },
+		{ "record", required_argument, NULL, 'r' },
+		{ "resume", required_argument, NULL, 'R' },
+		{ "keyframe-every", required_argument, NULL, 'k' },
+		{ "ascii", no_argument, NULL, 'A' },
+		{ "unicode", no_argument, NULL, 'U' },
+		{ "blocks", no_argument, NULL, 'B' },
+		{ "set", required_argument, NULL, 's' },
+		{ "summary", required_argument, NULL, 'S' },
+		{ "help", no_argument, NULL, 'h' },
+		{ NULL, 0, NULL, 0 },
+	};
+	int c, rc;
+
+	*o = (struct run_opts){ .until = -1, .dt = -1, .integrator = -1,
+	    .tui = { .color = true, .delay = 1, .paused = false } };
+	if ((o->sets = calloc((size_t)argc, sizeof *o->sets)) == NULL) {
+		fprintf(stderr, "drape run: out of memory\n");
+		return EXIT_RUNTIME;
+	}
+	optind = 1;
+	opterr = 0;
+	while ((c = getopt_long(argc, argv, "+hCd:", longopts, NULL)) != -1) {
+		if (c == 'h') {
+			usage(stdout);
+			return -1;
+		}
+		if (c == '?' || c == ':')
+			return cmd_option_error("run", argv);
+		if ((rc = take_option(o, c, optarg)) != EXIT_OK)
+			return rc;
+	}
+	if (o->resume == NULL) {
+		if (optind != argc - 1) {
+			fprintf(stderr, "drape run: expected one scene file\n");
+			usage(stderr);
+			return EXIT_USAGE;
+		}
+		o->scene = argv[optind];
+	} else if (optind != argc) {
+		fprintf(stderr, "drape run: --resume takes no scene file: the replay holds it\n");
+		return EXIT_USAGE;
+	} else if (o->nsets > 0) {
+		fprintf(stderr, "drape run: --set '%s': --resume runs the recorded scene; expected "
+		    "no --set (its values are in the replay)\n", o->sets[0]);
+		return EXIT_USAGE;
+	}
+	return EXIT_OK;
 }
 
 /* FILE or FILE@STEP. */
@@ -310,310 +248,338 @@ same_file(const char *a, const char *b)
 	    sa.st_ino == sb.st_ino;
 }
 
-/* The scene and options of a replay, and the state of its last keyframe
- * at or before the step asked for. */
+/* The scene and options of a replay, and the run at its last keyframe at
+ * or before the step asked for; an exit status. */
 static int
-resume_run(struct stepper *st, struct scene *sc, const char *arg, double until,
-    long *keyframe_every)
+open_resumed(const struct run_opts *o, const char *file, long step, struct scene *sc,
+    struct stepper **st, long *keyframe_every)
 {
 	struct replay rp;
-	struct replay_keyframe kf;
+	struct stepper_report r;
 	struct drape_err err;
-	char *file;
-	long step, k;
 	int rc = EXIT_USAGE;
 
-	if (parse_resume(arg, &file, &step) != 0) {
+	if (replay_open(&rp, file, &err) != 0) {
+		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
+		return EXIT_USAGE;
+	}
+	if (replay_scene(&rp, file, o->until, sc, &err) != 0) {
+		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
+	} else if (cmd_check_run_length("run", sc, o->until, rp.meta.dt_set) != EXIT_OK) {
+		scene_free(sc);
+	} else if ((*st = replay_resume(&rp, file, sc, step, &err)) == NULL) {
+		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
+		scene_free(sc);
+	} else {
+		if (strcmp(rp.meta.version, PACKAGE_VERSION) != 0)
+			fprintf(stderr, "drape run: --resume: %s was recorded by drape %s, this is "
+			    "%s: the continuation may differ from the recorded run\n", file,
+			    rp.meta.version, PACKAGE_VERSION);
+		if (*keyframe_every == 0 && rp.meta.keyframe_every > 0)
+			*keyframe_every = rp.meta.keyframe_every;
+		stepper_report(*st, &r);
+		/* on stdout with the text summary; a record is alone there */
+		fprintf(o->summary == RUN_TEXT ? stdout : stderr,
+		    "resumed      from %s at step %ld (t = %.9g s)\n", file, r.step, r.t);
+		rc = EXIT_OK;
+	}
+	replay_close(&rp);
+	return rc;
+}
+
+/* --resume: its own checks on the options, then open_resumed. */
+static int
+resume(struct run_opts *o, struct scene *sc, struct stepper **st)
+{
+	char *file;
+	long step;
+	int rc;
+
+	if (o->dt >= 0 || o->integrator >= 0) {
+		fprintf(stderr, "drape run: --resume runs with the recorded --dt and --integrator; "
+		    "only --until may change\n");
+		return EXIT_USAGE;
+	}
+	if (parse_resume(o->resume, &file, &step) != 0) {
 		fprintf(stderr, "drape run: out of memory\n");
 		return EXIT_RUNTIME;
 	}
-	if (replay_open(&rp, file, &err) != 0) {
-		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
+	if (o->record != NULL && same_file(file, o->record)) {
+		fprintf(stderr, "drape run: --record '%s' would overwrite the replay being resumed: "
+		    "expected another file\n", o->record);
 		free(file);
 		return EXIT_USAGE;
 	}
-	if ((k = replay_find_keyframe(&rp, step)) < 0) {
-		fprintf(stderr, "drape run: --resume: %s: no intact keyframe at or before step %ld\n",
-		    file, step);
-		goto out;
-	}
-	if (replay_read_keyframe(&rp, (size_t)k, &kf, &err) != 0) {
-		fprintf(stderr, "drape run: --resume: %s: %s\n", file, err.msg);
-		goto out;
-	}
-	if (scene_parse(sc, rp.meta.path, rp.meta.text, &err) != 0) {
-		fprintf(stderr, "drape run: --resume: %s: its scene: %s\n", file, err.msg);
-		replay_keyframe_free(&kf);
-		goto out;
-	}
-	sc->duration = until > 0 ? until : rp.meta.duration;
-	sc->dt = rp.meta.dt;
-	if (rp.meta.integrator < 0 || rp.meta.integrator >= INTEG_COUNT) {
-		fprintf(stderr, "drape run: --resume: %s: unknown integrator %d\n", file,
-		    rp.meta.integrator);
-		goto fail_scene;
-	}
-	sc->integrator = (enum integrator_kind)rp.meta.integrator;
-	if (stepper_init(st, sc, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		goto fail_scene;
-	}
-	if ((uint32_t)st->cl.n != rp.meta.nodes || st->dt_set != rp.meta.dt_set) {
-		fprintf(stderr, "drape run: --resume: %s: its scene now gives %d nodes and dt %.17g, "
-		    "expected the recorded %u and %.17g\n", file, st->cl.n, st->dt_set,
-		    rp.meta.nodes, rp.meta.dt_set);
-		stepper_free(st);
-		goto fail_scene;
-	}
-	memcpy(st->y, kf.y, 6 * (size_t)st->cl.n * sizeof *st->y);
-	st->t = kf.t;
-	st->step = kf.step;
-	st->dt = kf.dt;
-	if (stepper_hash(st) != kf.hash) {
-		fprintf(stderr, "drape run: --resume: %s: the keyframe at step %ld does not match "
-		    "its hash\n", file, kf.step);
-		stepper_free(st);
-		goto fail_scene;
-	}
-	if (strcmp(rp.meta.version, PACKAGE_VERSION) != 0)
-		fprintf(stderr, "drape run: --resume: %s was recorded by drape %s, this is %s: "
-		    "the continuation may differ from the recorded run\n", file, rp.meta.version,
-		    PACKAGE_VERSION);
-	if (*keyframe_every == 0)
-		*keyframe_every = rp.meta.keyframe_every > 0 ? rp.meta.keyframe_every : 0;
-	printf("resumed      from %s at step %ld (t = %.9g s)\n", file, kf.step, kf.t);
-	replay_keyframe_free(&kf);
-	rc = EXIT_OK;
-	goto out;
-fail_scene:
-	replay_keyframe_free(&kf);
-	scene_free(sc);
-out:
-	replay_close(&rp);
+	rc = open_resumed(o, file, step, sc, st, &o->keyframe_every);
 	free(file);
+	o->headless = true;	/* a resumed run is headless: its summary is the point */
 	return rc;
+}
+
+/* The scene with the command line's overrides, and its run; an exit status. */
+static int
+open_scene(const struct run_opts *o, struct scene *sc, struct stepper **st)
+{
+	struct drape_err err;
+
+	if (scene_load_set(sc, o->scene, o->sets, o->nsets, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		return EXIT_USAGE;
+	}
+	if (cmd_check_run_length("run", sc, o->until, o->dt) != EXIT_OK) {
+		scene_free(sc);
+		return EXIT_USAGE;
+	}
+	if (o->until > 0)
+		sc->duration = o->until;
+	if (o->dt >= 0)
+		sc->dt = o->dt;
+	if (o->integrator >= 0)
+		sc->integrator = (enum integrator_kind)o->integrator;
+	if ((*st = cmd_stepper_new(sc, &err)) == NULL) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		scene_free(sc);
+		return EXIT_USAGE;
+	}
+	return EXIT_OK;
+}
+
+/* The TUI's end, as an exit status, with its messages once the terminal
+ * is back. */
+static int
+tui_status(const struct tui_result *res, const char *path)
+{
+	switch (res->end) {
+	case TUI_ERROR:
+		fprintf(stderr, "drape: %s\n", res->why);
+		return EXIT_RUNTIME;
+	case TUI_SIGNAL:
+		return 128 + res->signo;
+	case TUI_QUIT:
+		break;
+	}
+	if (res->blown_up) {
+		fprintf(stderr, "drape: %s: %s\n", path, res->why);
+		return res->run_error ? EXIT_RUNTIME : EXIT_BLOWUP;
+	}
+	return EXIT_OK;
+}
+
+/* The front end on the live run, recording into o->record from the start
+ * if given. A recording still on at the end (q, a signal) is closed here. */
+static int
+run_tui(struct stepper *st, const struct run_opts *o)
+{
+	struct source src;
+	struct source_live lv;
+	struct tui_result res;
+	struct stepper_report r;
+	char why[600], *name = NULL;
+	const char *rec;
+	int rc = EXIT_OK, end;
+
+	source_live(&src, &lv, st);
+	stepper_set_stop(st, tui_stop_flag());
+	lv.keyframe_every = o->keyframe_every;
+	if (o->record != NULL && src.record(src.ctx, o->record, why, sizeof why) != 0) {
+		fprintf(stderr, "drape: --record: %s\n", why);
+		source_live_free(&lv);
+		return EXIT_RUNTIME;
+	}
+	tui_run(&src, &o->tui, &res);
+	if ((rec = src.recording(src.ctx, NULL)) != NULL && (name = strdup(rec)) == NULL)
+		rc = EXIT_RUNTIME;
+	if (rec != NULL && src.record(src.ctx, NULL, why, sizeof why) != 0) {
+		fprintf(stderr, "drape: %s\n", why);
+		rc = EXIT_RUNTIME;
+	} else if (name != NULL) {
+		stepper_report(st, &r);
+		fprintf(stderr, "drape: recorded %s (to step %ld)\n", name, r.step);
+	}
+	free(name);
+	if (lv.rec_failed) {	/* shown in the TUI, and said again once it is gone */
+		fprintf(stderr, "drape: %s\n", lv.rec_error);
+		rc = EXIT_RUNTIME;
+	}
+	source_live_free(&lv);
+	end = tui_status(&res, stepper_scene(st)->path);
+	return end != EXIT_OK ? end : rc;
+}
+
+static void
+progress(const struct stepper *st, double wall)
+{
+	struct stepper_report r;
+	double rate;
+
+	stepper_report(st, &r);
+	rate = wall > 0 ? r.t / wall : 0;
+	fprintf(stderr, "\r  t %.4f / %.4f s   step %ld   %.0f steps/s   ETA %.0f s   ", r.t,
+	    r.t_end, r.step, wall > 0 ? (double)r.step / wall : 0,
+	    rate > 0 ? (r.t_end - r.t) / rate : 0);
+}
+
+/* Steps to the end (or a failure, or a signal), recording into rec if not
+ * NULL; an exit status, and in *end how it ended. */
+static int
+step_headless(struct stepper *st, struct recorder *rec, bool tty, struct run_end *end)
+{
+	struct step_failure *f = &end->f;
+	struct drape_err err;
+	struct stepper_report r;
+	double t0 = clock_seconds(), last = t0;
+	const char *path = stepper_scene(st)->path;
+
+	while (!stepper_done(st) && !interrupted) {
+		enum step_status s = stepper_step(st, f);
+
+		if (s == STEP_STOPPED)
+			break;
+		if (s != STEP_OK) {
+			if (tty)
+				fputc('\n', stderr);
+			end->failed = true;
+			end->outcome = f->status == STEP_BLOWUP ? RUN_BLOWUP : RUN_ERROR;
+			return cmd_step_failed(NULL, path, f);
+		}
+		if (rec != NULL && record_step(rec, st, &err) != 0) {
+			stepper_report(st, &r);
+			if (tty)
+				fputc('\n', stderr);
+			fprintf(stderr, "drape: %s; the run stops at step %ld, and the replay holds "
+			    "what was written\n", err.msg, r.step);
+			*f = (struct step_failure){ STEP_ERROR, r.step, r.t, -1, -1, -1, "" };
+			memcpy(f->why, err.msg, sizeof f->why - 1);	/* cut to fit */
+			f->why[sizeof f->why - 1] = '\0';
+			end->failed = true;
+			end->outcome = RUN_ERROR;
+			return EXIT_RUNTIME;
+		}
+		if (tty && clock_seconds() - last > 0.25) {
+			last = clock_seconds();
+			progress(st, last - t0);
+		}
+	}
+	return EXIT_OK;
+}
+
+/* A headless run: progress on a terminal, the replay; how it ended in
+ * *end, for the summary. */
+static int
+run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
+{
+	bool tty = isatty(STDERR_FILENO);
+	struct recorder rec;
+	struct drape_err err;
+	struct stepper_report r;
+	double t0;
+	int rc;
+
+	if (o->record != NULL && record_open(&rec, o->record, st, o->keyframe_every > 0 ?
+	    o->keyframe_every : record_default_keyframes(st), &err) != 0) {
+		fprintf(stderr, "drape: --record: %s\n", err.msg);
+		return EXIT_RUNTIME;
+	}
+	catch_signals();
+	stepper_set_stop(st, &interrupted);
+	t0 = clock_seconds();
+	rc = step_headless(st, o->record != NULL ? &rec : NULL, tty, end);
+	if (tty)
+		fputs("\r\033[K", stderr);
+	if (interrupted && rc == EXIT_OK) {
+		stepper_report(st, &r);
+		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)\n", signal_word(interrupted),
+		    r.step, r.t);
+		rc = EXIT_INTERRUPTED;
+		end->outcome = RUN_INTERRUPTED;
+	}
+	if (o->record != NULL && record_close(&rec, st, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		if (rc == EXIT_OK)
+			rc = EXIT_RUNTIME;
+	}
+	end->wall = clock_seconds() - t0;
+	return rc;
+}
+
+/* The headless run's summary in its format, rc its exit status so far;
+ * the exit status. */
+static int
+print_summary(const struct stepper *st, const struct run_opts *o, const struct run_end *end,
+    int rc)
+{
+	struct run_record rec;
+	int wrc = 0;
+
+	run_record_fill(&rec, st, end->wall);
+	rec.sets = o->sets;
+	rec.nsets = o->nsets;
+	rec.outcome = end->outcome;
+	rec.failed = end->failed;
+	rec.failure = end->f;
+	rec.exit_status = rc;
+	switch (o->summary) {
+	case RUN_TEXT: run_summary(stdout, &rec); break;
+	case RUN_JSON: wrc = run_record_json(stdout, &rec); break;
+	case RUN_CSV: wrc = run_record_csv(stdout, &rec, true); break;
+	}
+	if (wrc != 0 && rc == EXIT_OK)
+		rc = EXIT_RUNTIME;	/* said by cmd_run's check of stdout */
+	return rc;
+}
+
+static int
+write_final(const struct stepper *st, const char *path)
+{
+	const struct cloth *cl = &stepper_network(st)->cl;
+	struct drape_err err;
+
+	if (path == NULL)
+		return EXIT_OK;
+	if (obj_write(path, stepper_x(st), cl->n, cl->tri, cl->ntri, &err) != 0) {
+		fprintf(stderr, "drape: %s\n", err.msg);
+		return EXIT_RUNTIME;
+	}
+	return EXIT_OK;
 }
 
 int
 cmd_run(int argc, char **argv)
 {
-	static const struct option longopts[] = {
-		{ "headless", no_argument, NULL, 'H' },
-		{ "until", required_argument, NULL, 'u' },
-		{ "integrator", required_argument, NULL, 'i' },
-		{ "dt", required_argument, NULL, 'T' },
-		{ "no-color", no_argument, NULL, 'C' },
-		{ "delay", required_argument, NULL, 'd' },
-		{ "paused", no_argument, NULL, 'p' },
-		{ "final-obj", required_argument, NULL, 'o' },
-		{ "record", required_argument, NULL, 'r' },
-		{ "resume", required_argument, NULL, 'R' },
-		{ "keyframe-every", required_argument, NULL, 'k' },
-		{ "help", no_argument, NULL, 'h' },
-		{ NULL, 0, NULL, 0 },
-	};
-	const char *final_obj = NULL, *record = NULL, *resume = NULL;
-	double until = -1, dt = -1;
-	int integ = -1, c, tty = isatty(STDERR_FILENO), rc = EXIT_OK;
-	bool headless = false;
-	struct tui_opts topt = { .color = true, .delay = 1, .paused = false };
-	long keyframe_every = 0;
+	struct run_opts o;
+	struct run_end end = { RUN_COMPLETED, false, { STEP_OK, 0, 0, -1, -1, -1, "" }, 0 };
 	struct scene sc;
-	struct stepper st;
-	struct drape_err err;
-	struct blowup bl;
-	struct hash_totals ht;
-	struct recorder rec;
-	bool recording = false;
-	double t0, last;
-	char why[200], *end;
+	struct stepper *st;
+	int rc;
 
-	optind = 1;
-	opterr = 0;
-	while ((c = getopt_long(argc, argv, "+hCd:", longopts, NULL)) != -1) {
-		switch (c) {
-		case 'H':
-			headless = true;
-			break;
-		case 'C':
-			topt.color = false;
-			break;
-		case 'd':
-			if (tui_parse_delay(optarg, &topt.delay) != 0)
-				return bad_option("--delay", optarg,
-				    "tenths of a second, a whole number from 1 to 100");
-			break;
-		case 'p':
-			topt.paused = true;
-			break;
-		case 'u':
-			if (units_parse(optarg, DIM_TIME, &until, 1, why, sizeof why) != 0 ||
-			    !(until > 0))
-				return bad_option("--until", optarg, "a time greater than 0");
-			break;
-		case 'i': {
-			enum integrator_kind k;
-
-			if (integrator_from_name(optarg, &k) != 0)
-				return bad_option("--integrator", optarg,
-				    "rk4, euler, symplectic-euler, rk2 or dopri5");
-			integ = (int)k;
-			break;
-		}
-		case 'T':
-			if (strcmp(optarg, "auto") == 0)
-				dt = 0;
-			else if (units_parse(optarg, DIM_TIME, &dt, 1, why, sizeof why) != 0 ||
-			    !(dt > 0))
-				return bad_option("--dt", optarg, "'auto' or a time greater than 0");
-			break;
-		case 'o':
-			final_obj = optarg;
-			break;
-		case 'r':
-			record = optarg;
-			break;
-		case 'R':
-			resume = optarg;
-			break;
-		case 'k':
-			errno = 0;
-			keyframe_every = strtol(optarg, &end, 10);
-			if (errno != 0 || end == optarg || *end != '\0' || keyframe_every < 1)
-				return bad_option("--keyframe-every", optarg, "a whole number of steps from 1");
-			break;
-		case 'h':
-			usage(stdout);
-			return EXIT_OK;
-		default:
-			return cmd_option_error("run", argv);
-		}
+	if ((rc = parse_options(argc, argv, &o)) != EXIT_OK) {
+		free(o.sets);
+		return rc < 0 ? EXIT_OK : rc;
 	}
-	if (resume != NULL) {
-		if (optind != argc) {
-			fprintf(stderr, "drape run: --resume takes no scene file: the replay holds it\n");
-			return EXIT_USAGE;
-		}
-		if (dt >= 0 || integ >= 0) {
-			fprintf(stderr, "drape run: --resume runs with the recorded --dt and "
-			    "--integrator; only --until may change\n");
-			return EXIT_USAGE;
-		}
-		if (record != NULL) {
-			char *file;
-			long step;
-			int same;
-
-			if (parse_resume(resume, &file, &step) != 0) {
-				fprintf(stderr, "drape run: out of memory\n");
-				return EXIT_RUNTIME;
-			}
-			same = same_file(file, record);
-			free(file);
-			if (same) {
-				fprintf(stderr, "drape run: --record '%s' would overwrite the replay "
-				    "being resumed: expected another file\n", record);
-				return EXIT_USAGE;
-			}
-		}
-		if ((rc = resume_run(&st, &sc, resume, until, &keyframe_every)) != EXIT_OK)
-			return rc;
-	} else {
-		if (optind != argc - 1) {
-			fprintf(stderr, "drape run: expected one scene file\n");
-			usage(stderr);
-			return EXIT_USAGE;
-		}
-		if (scene_load(&sc, argv[optind], &err) != 0) {
-			fprintf(stderr, "drape: %s\n", err.msg);
-			return EXIT_USAGE;
-		}
-		if (until > 0)
-			sc.duration = until;
-		if (dt >= 0)
-			sc.dt = dt;
-		if (integ >= 0)
-			sc.integrator = (enum integrator_kind)integ;
-		if (stepper_init(&st, &sc, &err) != 0) {
-			fprintf(stderr, "drape: %s\n", err.msg);
-			scene_free(&sc);
-			return EXIT_USAGE;
-		}
+	rc = o.resume != NULL ? resume(&o, &sc, &st) : open_scene(&o, &sc, &st);
+	if (rc != EXIT_OK) {
+		free(o.sets);
+		return rc;
 	}
-	/* a resumed run is headless: its summary is the point */
-	if (resume != NULL)
-		headless = true;
-	if (!headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
+	if (!o.headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
 		fprintf(stderr, "drape: not a terminal: running headless\n");
-		headless = true;
+		o.headless = true;
 	}
-	if (!headless) {
-		rc = run_tui(&st, &topt, record, keyframe_every);
-		goto done;
-	}
-	if (record != NULL) {
-		if (keyframe_every == 0)
-			keyframe_every = record_default_keyframes(&st);
-		if (record_open(&rec, record, &st, keyframe_every, &err) != 0) {
-			fprintf(stderr, "drape: --record: %s\n", err.msg);
-			stepper_free(&st);
-			scene_free(&sc);
-			return EXIT_RUNTIME;
-		}
-		recording = true;
-	}
+	rc = o.headless ? run_headless(st, &o, &end) : run_tui(st, &o);
+	/* a run stopped by a signal is at a consistent step too */
+	if (rc == EXIT_OK || rc == EXIT_INTERRUPTED || rc > 128) {
+		int w = write_final(st, o.final_obj);
 
-	catch_signals();
-	memset(&ht, 0, sizeof ht);
-	t0 = last = clock_seconds();
-	while (!stepper_done(&st) && !interrupted) {
-		if (stepper_step(&st, &bl) != 0) {
-			if (tty)
-				fputc('\n', stderr);
-			fprintf(stderr, "drape: %s: blow-up at step %ld (t = %.6g s)", sc.path,
-			    bl.step, bl.t);
-			if (bl.node >= 0)
-				fprintf(stderr, ": node %d (i %d, j %d)", bl.node, bl.i, bl.j);
-			fprintf(stderr, ": %s\n", bl.why);
-			rc = EXIT_BLOWUP;
-			break;
-		}
-		if (uses_hash(&st) && st.col.st.broad.rebuilt)
-			hash_add(&ht, &st.col.st.broad.hash);
-		if (recording && record_step(&rec, &st, &err) != 0) {
-			if (tty)
-				fputc('\n', stderr);
-			fprintf(stderr, "drape: %s; the run stops at step %ld, and the replay holds "
-			    "what was written\n", err.msg, st.step);
-			rc = EXIT_RUNTIME;
-			break;
-		}
-		if (tty && (st.step & 255) == 0 && clock_seconds() - last > 0.25) {
-			last = clock_seconds();
-			progress(&st, last - t0);
-		}
+		rc = rc == EXIT_OK ? w : rc;
 	}
-	if (tty)
-		fputs("\r\033[K", stderr);
-	if (interrupted && rc == EXIT_OK) {
-		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)\n",
-		    interrupted == SIGINT ? "interrupted" : "terminated", st.step, st.t);
-		rc = EXIT_INTERRUPTED;
-	}
-	if (recording && record_close(&rec, &st, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		if (rc == EXIT_OK)
-			rc = EXIT_RUNTIME;
-	}
-	summary(&st, clock_seconds() - t0, &ht);
-done:
-	if (rc == EXIT_OK)
-		rc = write_final(&st, final_obj);
+	if (o.headless)
+		rc = print_summary(st, &o, &end, rc);
 	if (fflush(stdout) != 0 && rc == EXIT_OK) {
 		perror("drape: stdout");
 		rc = EXIT_RUNTIME;
 	}
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
+	free(o.sets);
 	return rc;
 }

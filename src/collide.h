@@ -4,19 +4,25 @@
  * positions and velocities of the nodes that would break the network's
  * consistency, and keeps every contact of the step as an event.
  *
- * narrow = seed runs the chapter's procedure once: at the first hit of a
- * node it is corrected (eq. 11-17), then the obstacles are checked for the
- * nodes with no self-contact (§4).
- * narrow = ccd finds every vertex-face and edge-edge contact over the step
- * and answers it with an inelastic impulse shared by both sides (the node
- * and the triangle, or the two edges) by their masses, then tests again
- * the pairs whose nodes moved; from the sixth pass on, a contact still
- * there sticks: its vertices go back to step k (where the network was
- * consistent) at their mean velocity, which ends in at most one pass per
- * node and leaves no crossing behind. */
+ * A step runs the broad phase (broad.h) over the geometry
+ * (collide_geometry.c), then one of two narrow phases:
+ * - narrow = seed (collide_seed.c) runs the chapter's procedure once: at
+ *   the first hit of a node it is corrected (eq. 11-17), then the
+ *   obstacles are checked for the nodes with no self-contact (§4);
+ * - narrow = ccd (collide_ccd.c) finds every vertex-face and edge-edge
+ *   contact over the step and answers it with an inelastic impulse shared
+ *   by both sides (the node and the triangle, or the two edges) by their
+ *   masses, then tests again the pairs whose nodes moved; from pass
+ *   COLLIDE_FAILSAFE_PASS on, a contact still there sticks: its vertices go
+ *   back to step k (where the network was consistent) at their mean
+ *   velocity, which ends in at most one pass per node and leaves no
+ *   crossing behind.
+ * The analytic obstacles are collide_obstacle.c's; where a corrected node
+ * goes is response_position's (response.h). */
 #ifndef DRAPE_COLLIDE_H
 #define DRAPE_COLLIDE_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -25,6 +31,9 @@
 #include "narrow.h"
 #include "response.h"
 #include "scene.h"
+#include "stats.h"
+
+#define COLLIDE_FAILSAFE_PASS 5	/* ccd: from this pass on, a hit node goes back to step k */
 
 struct contact_event {
 	long step;
@@ -36,16 +45,6 @@ struct contact_event {
 	double vn_before, vn_after;	/* the node's velocity along n */
 };
 
-struct collide_stats {
-	struct broad_stats broad;
-	long narrow_tests;
-	long contacts[CONTACT_NTYPES];
-	long corrections;	/* node corrections */
-	int passes;		/* ccd: detect-and-correct passes */
-	long frozen;		/* ccd: nodes put back to step k as a last resort */
-	long unresolved;	/* contacts left at the pass limit (prescribed motion) */
-};
-
 struct collide {
 	struct collision_opts opt;
 	const struct obstacle *obst;
@@ -53,6 +52,9 @@ struct collide {
 	bool active;		/* anything to collide with at all */
 	bool pairs;		/* self-contact or obstacle meshes: the broad phase runs */
 	double cell;		/* L_ce */
+	/* ccd: each vertex's box of the step is its swept box widened by pad
+	 * times the step's largest motion (see collide_step, collide_set_pad) */
+	double pad;
 
 	/* the geometry: cloth nodes, then obstacle mesh vertices */
 	int ncloth, nv;
@@ -72,10 +74,25 @@ struct collide {
 	unsigned char *changed, *changed_next, *frozen;
 	double *box;		/* each vertex's swept box at the start of the step */
 
+	const volatile sig_atomic_t *stop;	/* set: give the step up (NULL: never) */
+	bool stopped;			/* the last step was given up for stop */
+
 	struct contact_event *ev;	/* this step's events */
 	size_t nev, evcap;
 	struct collide_stats st, total;
 };
+
+/* Anything for the stages to do in this scene (an obstacle, or the cloth
+ * against itself); and whether its broad phase runs and fills a spatial
+ * hash. From the scene alone, so that a replay's viewer says the same. */
+bool collide_active(const struct scene *sc);
+bool collide_uses_hash(const struct scene *sc);
+
+/* What `[collision] memory = auto` allows the stages: half the machine's. */
+double collide_default_memory(void);
+
+/* What the broad phase must find for a narrow phase. */
+struct broad_want collide_broad_want(enum narrow_mode narrow, bool self);
 
 /* held marks the nodes on prescribed motion (never corrected); dt is the
  * scene's step and vmax the fastest a node is expected to move (eq. 21). */
@@ -83,10 +100,42 @@ int collide_init(struct collide *c, const struct scene *sc, const struct cloth *
     const unsigned char *held, double dt, double vmax, struct drape_err *err);
 void collide_free(struct collide *c);
 
+/* ccd: each vertex's box of a step is its swept box widened by pad times
+ * the step's largest motion. collide_init's 2 holds every correction but
+ * the rare one that is clamped; a method whose own contacts make the
+ * corrections few and small may take less. */
+void collide_set_pad(struct collide *c, double pad);
+
+/* Polls *flag in the broad phase and the ccd passes: once it is set, the
+ * step is given up (c->stopped). NULL: never. */
+void collide_set_stop(struct collide *c, const volatile sig_atomic_t *flag);
+
 /* y0 is the consistent state k, y1 the predicted state k+1 (positions then
  * velocities), corrected in place. Returns 0, or -1 with a message. */
 int collide_step(struct collide *c, long step, double dt, const double *y0, double *y1,
     struct drape_err *err);
+
+/* collide_step is collide_begin (no events, statistics zero) and then
+ * collide_check, so that a step may add events of its own in between. */
+void collide_begin(struct collide *c);
+int collide_check(struct collide *c, long step, double dt, const double *y0, double *y1,
+    struct drape_err *err);
+
+/* The broad phase's pairs (in c's broad phase) for the motion the state
+ * y0 would make over h at its velocities, each node's box widened by
+ * margin and share of its own motion: the fast path's contacts are taken from them at a step's start
+ * (contacts.h). 0, or -1 with a message. */
+int collide_candidates(struct collide *c, const double *y0, double h, double margin, double share,
+    struct drape_err *err);
+
+/* Records a contact of the step as an event (and a correction); 0, or -1
+ * out of memory. */
+int collide_add_event(struct collide *c, long step, int node, enum contact_type type, int other,
+    int obstacle, vec3 q, vec3 n, double vn_before, double vn_after);
+
+/* The friction of a contact with the scene's obstacle, or of cloth on
+ * cloth (obstacle -1). */
+struct friction collide_friction(const struct collide *c, int obstacle);
 
 /* The geometry as the broad phase sees it, for tests. */
 static inline const struct geom *collide_geom(const struct collide *c) { return &c->g; }

@@ -3,6 +3,7 @@
  * energy, so forces_energy and forces_accel agree exactly (a test checks
  * them against each other by finite differences). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -85,6 +86,18 @@ forces_free(struct forces *fo)
 	memset(fo, 0, sizeof *fo);
 }
 
+void
+forces_set_stop(struct forces *fo, const volatile sig_atomic_t *flag)
+{
+	fo->stop = flag;
+}
+
+bool
+forces_stopped(const struct forces *fo)
+{
+	return fo->stop != NULL && *fo->stop;
+}
+
 static int
 load_active(const struct load_group *lg, double t)
 {
@@ -105,6 +118,8 @@ add_stretch(const struct forces *fo, const double *x, const double *v, double *f
 		vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
 		double len = v3_len(d), mag;
 
+		if (forces_poll(fo, s))
+			return;
 		if (len == 0)
 			continue;	/* direction undefined; no energy gradient either way */
 		mag = sp->k * (len - sp->rest) / len;
@@ -135,6 +150,8 @@ add_shear(const struct forces *fo, const double *x, double *f)
 		double l1s = v3_dot(e1, e1), l2s = v3_dot(e2, e2), q, inv12, c, kc;
 		vec3 fa, fb;
 
+		if (forces_poll(fo, s))
+			return;
 		if (l1s == 0 || l2s == 0)
 			continue;
 		q = 1 / (l1s * l2s);
@@ -158,10 +175,10 @@ add_shear(const struct forces *fo, const double *x, double *f)
  * bound as the line folds back on itself. dE/de1 = -k (2 kb x e2 +
  * |kb|^2 e2)/D and dE/de2 = k (2 kb x e1 - |kb|^2 e1)/D. */
 static void
-add_bend(const struct forces *fo, const double *x, double *f)
+add_bend(const struct forces *fo, const double *x, double *f, double fold)
 {
 	const struct cloth *cl = fo->cl;
-	double rest2 = cl->h * cl->h;
+	double rest2 = cl->h * cl->h, dmin = fold * rest2;
 	size_t s;
 
 	for (s = 0; s < cl->nhinges; s++) {
@@ -171,8 +188,12 @@ add_bend(const struct forces *fo, const double *x, double *f)
 		double d = rest2 + v3_dot(e1, e2), kd, kb2;
 		vec3 kb, fa, fc;
 
+		if (forces_poll(fo, s))
+			return;
 		if (!(d > 1e-9 * rest2))
 			continue;	/* folded right back: the energy has no gradient */
+		if (d < dmin)
+			d = dmin;	/* the fold limiter (forces.h) */
 		kd = hg->k / d;
 		kb = v3_scale(v3_cross(e1, e2), 2 / d);
 		kb2 = v3_dot(kb, kb);
@@ -184,19 +205,21 @@ add_bend(const struct forces *fo, const double *x, double *f)
 	}
 }
 
-void
-forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a)
+static void
+accel(const struct forces *fo, double t, const double *x, const double *v, double *a,
+    bool stretch, double fold)
 {
 	const struct cloth *cl = fo->cl;
 	vec3 g = v3_load(fo->g);
 	int p, l, k;
 
 	memset(a, 0, (size_t)cl->n * 3 * sizeof *a);
-	add_stretch(fo, x, v, a);
-	if (cl->ncorners > 0)
+	if (stretch)
+		add_stretch(fo, x, v, a);
+	if (cl->ncorners > 0 && !forces_stopped(fo))
 		add_shear(fo, x, a);
-	if (cl->nhinges > 0)
-		add_bend(fo, x, a);
+	if (cl->nhinges > 0 && !forces_stopped(fo))
+		add_bend(fo, x, a, fold);
 	for (l = 0; l < fo->nloads; l++)
 		if (load_active(&fo->loads[l], t))
 			for (k = 0; k < fo->loads[l].n; k++)
@@ -209,6 +232,30 @@ forces_accel(const struct forces *fo, double t, const double *x, const double *v
 		for (p = 0; p < cl->n; p++)
 			v3_store(a + 3 * p, v3_madd(g, v3_load(a + 3 * p), 1 / cl->mass[p]));
 	}
+}
+
+void
+forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a)
+{
+	accel(fo, t, x, v, a, true, 0);
+}
+
+void
+forces_accel_soft(const struct forces *fo, double t, const double *x, const double *v,
+    double *a, double fold)
+{
+	accel(fo, t, x, v, a, false, fold);
+}
+
+double
+forces_fold_limit(double s)
+{
+	/* a hinge of turning angle theta has stiffness k sec^2(theta/2)
+	 * (3 sec^2(theta/2) - 2) along theta, and sec^2(theta/2) = 2 rest^2/D:
+	 * with u = rest^2/D, 12 u^2 - 4 u = s */
+	double u = (4 + sqrt(16 + 48 * s)) / 24;
+
+	return 1 / u;
 }
 
 void

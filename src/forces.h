@@ -3,6 +3,10 @@
 #ifndef DRAPE_FORCES_H
 #define DRAPE_FORCES_H
 
+#include <signal.h>
+#include <stdbool.h>
+#include <stddef.h>
+
 #include "cloth.h"
 #include "err.h"
 #include "scene.h"
@@ -21,6 +25,9 @@ struct forces {
 	double spring_damping;	/* s */
 	struct load_group *loads;
 	int nloads;
+	/* polled in the element loops (NULL: never): once set, a call
+	 * returns early, its result unfinished, for the caller to drop */
+	const volatile sig_atomic_t *stop;
 };
 
 struct energy {
@@ -30,9 +37,33 @@ struct energy {
 int forces_init(struct forces *fo, const struct scene *sc, const struct cloth *cl,
     struct drape_err *err);
 void forces_free(struct forces *fo);
+void forces_set_stop(struct forces *fo, const volatile sig_atomic_t *flag);
+/* 1 once the stop flag is set. */
+bool forces_stopped(const struct forces *fo);
+
+/* For the loops over elements (here and in jacobian.c): 1 when the flag is
+ * set, looked at once every FORCES_POLL_EVERY elements (i counts them).
+ * On the largest cloth (2048 x 2048) a pass over an element kind takes
+ * tenths of a second. */
+#define FORCES_POLL_EVERY 65536
+static inline bool
+forces_poll(const struct forces *fo, size_t i)
+{
+	return (i + 1) % FORCES_POLL_EVERY == 0 && forces_stopped(fo);
+}
 
 /* a = F/m for every node, from positions x and velocities v (3n each). */
 void forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a);
+/* The same without the stretch springs and their dashpots, and with the
+ * fold limiter: a hinge's D (add_bend in forces.c: rest^2 (1 + cos theta)
+ * for a turning angle theta) is taken as at least fold * rest^2, so that
+ * its stiffness, k at rest and growing as sec^4(theta/2) towards a fold
+ * right back, stays within what an explicit substep integrates (0: none;
+ * forces_fold_limit gives it). */
+void forces_accel_soft(const struct forces *fo, double t, const double *x, const double *v,
+    double *a, double fold);
+/* The fold at which a hinge is s times as stiff as at rest (s >= 1). */
+double forces_fold_limit(double s);
 
 void forces_energy(const struct forces *fo, double t, const double *x, const double *v,
     struct energy *e);

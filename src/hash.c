@@ -296,3 +296,19 @@ hash_stats(const struct spatial_hash *h, struct hash_stats *s)
 	s->probe_mean = h->inserts ? (double)h->probes / (double)h->inserts : 0;
 	s->probe_max = h->probe_max;
 }
+
+void
+hash_stats_add(struct hash_stats *sum, const struct hash_stats *s)
+{
+	int k;
+
+	sum->entries += s->entries;
+	sum->cubes += s->cubes;
+	sum->shared += s->shared;
+	sum->load += s->load;
+	sum->probe_mean += s->probe_mean;
+	if (s->probe_max > sum->probe_max)
+		sum->probe_max = s->probe_max;
+	for (k = 0; k < HASH_HIST; k++)
+		sum->hist[k] += s->hist[k];
+}

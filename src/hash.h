@@ -102,6 +102,8 @@ int hash_insert(struct spatial_hash *h, int64_t key, int item);
 const struct hash_cube *hash_find(const struct spatial_hash *h, int64_t key);
 
 void hash_stats(const struct spatial_hash *h, struct hash_stats *s);
+/* sum += s, for means over fills (probe_max: the largest). */
+void hash_stats_add(struct hash_stats *sum, const struct hash_stats *s);
 
 /* Frees everything; h is as after hash_init. */
 void hash_free(struct spatial_hash *h);

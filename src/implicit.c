@@ -27,6 +27,8 @@ implicit_init(struct implicit *im, const struct forces *fo, const unsigned char 
 		if ((*v[i] = malloc(n3 * sizeof(double))) == NULL)
 			goto oom;
 	if ((im->cdir = malloc(3 * n3 * sizeof *im->cdir)) == NULL ||
+	    (im->cmu = malloc(n3 * sizeof *im->cmu)) == NULL ||
+	    (im->cjn = malloc(n3 * sizeof *im->cjn)) == NULL ||
 	    (im->pre = malloc(3 * n3 * sizeof *im->pre)) == NULL ||
 	    (im->ncon = calloc((size_t)fo->cl->n, 1)) == NULL)
 		goto oom;
@@ -34,6 +36,12 @@ implicit_init(struct implicit *im, const struct forces *fo, const unsigned char 
 oom:
 	implicit_free(im);
 	return -1;
+}
+
+void
+implicit_set_stop(struct implicit *im, const volatile sig_atomic_t *flag)
+{
+	im->stop = flag;
 }
 
 void
@@ -49,12 +57,14 @@ implicit_free(struct implicit *im)
 	free(im->q);
 	free(im->pre);
 	free(im->cdir);
+	free(im->cmu);
+	free(im->cjn);
 	free(im->ncon);
 	memset(im, 0, sizeof *im);
 }
 
 void
-implicit_constrain(struct implicit *im, int p, const double n[3])
+implicit_constrain(struct implicit *im, int p, const double n[3], double mu)
 {
 	vec3 d = v3_load(n);
 	double len;
@@ -69,6 +79,7 @@ implicit_constrain(struct implicit *im, int p, const double n[3])
 	}
 	if ((len = v3_len(d)) < 0.1)
 		return;		/* (nearly) one already constrained */
+	im->cmu[3 * p + im->ncon[p]] = mu;
 	v3_store(im->cdir + 9 * p + 3 * im->ncon[p]++, v3_scale(d, 1 / len));
 }
 
@@ -92,8 +103,9 @@ filter(const struct implicit *im, double *w)
 	}
 }
 
-/* Drops the constraints that the forces b pull the node away from: the
- * node leaves the obstacle. */
+/* Drops the constraints that the forces b pull the node away from (the
+ * node leaves the obstacle), and keeps for the others the impulse the
+ * obstacle takes, for friction. */
 static void
 release(struct implicit *im, const double *b)
 {
@@ -102,13 +114,60 @@ release(struct implicit *im, const double *b)
 	for (p = 0; p < n; p++)
 		for (k = 0; k < im->ncon[p]; k++) {
 			double *e = im->cdir + 9 * p + 3 * k;
+			double bn = v3_dot(v3_load(e), v3_load(b + 3 * p));
+			int rest = im->ncon[p] - k - 1;
 
-			if (v3_dot(v3_load(e), v3_load(b + 3 * p)) > 0) {
-				memmove(e, e + 3, (size_t)(im->ncon[p] - k - 1) * 3 * sizeof *e);
+			if (bn > 0) {
+				memmove(e, e + 3, (size_t)rest * 3 * sizeof *e);
+				memmove(im->cmu + 3 * p + k, im->cmu + 3 * p + k + 1,
+				    (size_t)rest * sizeof *im->cmu);
 				im->ncon[p]--;
 				k--;
+				continue;
 			}
+			/* the impulse the obstacle takes: the step's push into it
+			 * (its first-order part; the solve's coupling is left out) */
+			im->cjn[3 * p + k] = -bn;
 		}
+}
+
+/*
+ * Coulomb friction on the constrained nodes' sliding (eq. 11-12 in the
+ * chapter's terms, at velocity level): each constraint's normal impulse
+ * jn allows a tangential change of velocity of at most mu jn / m; a node
+ * whose sliding is slower than that sticks. The position follows the new
+ * velocity, as backward Euler's x' = x + h v' says.
+ */
+static void
+friction(const struct implicit *im, double h, const double *x, double *y_out)
+{
+	const struct cloth *cl = im->fo->cl;
+	size_t n3 = 3 * (size_t)cl->n;
+	int p, k;
+
+	for (p = 0; p < cl->n; p++) {
+		vec3 v, vt;
+		double cut = 0, slip;
+
+		if (im->ncon[p] == 0 || !(cl->mass[p] > 0))
+			continue;
+		for (k = 0; k < im->ncon[p]; k++)
+			cut += im->cmu[3 * p + k] * im->cjn[3 * p + k];
+		if (!(cut > 0))
+			continue;
+		cut /= cl->mass[p];
+		v = vt = v3_load(y_out + n3 + 3 * p);
+		for (k = 0; k < im->ncon[p]; k++) {
+			vec3 e = v3_load(im->cdir + 9 * p + 3 * k);
+
+			vt = v3_madd(vt, e, -v3_dot(vt, e));
+		}
+		if ((slip = v3_len(vt)) == 0)
+			continue;
+		v = v3_madd(v, vt, -(slip <= cut ? 1 : cut / slip));
+		v3_store(y_out + n3 + 3 * p, v);
+		v3_store(y_out + 3 * p, v3_madd(v3_load(x + 3 * p), v, h));
+	}
 }
 
 /* out = (M (1 + h damping) + h C + h^2 K) w */
@@ -169,6 +228,17 @@ dot(const double *a, const double *b, size_t n)
 	return s;
 }
 
+/* The stop flag is set: the step is given up (the caller drops it). */
+static bool
+give_up(struct implicit *im)
+{
+	if (im->stop == NULL || !*im->stop)
+		return false;
+	im->stopped = true;
+	memset(im->ncon, 0, (size_t)im->fo->cl->n);
+	return true;
+}
+
 void
 implicit_step(struct implicit *im, double t, double h, const double *y, double *y_out)
 {
@@ -178,15 +248,23 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	double md = 1 + h * im->fo->damping, rr, rz, stop2;
 	int it;
 
-	/* b = h (f - h K v) */
+	im->stopped = false;
+	/* b = h (f - h K v); on the largest cloths each of these passes takes
+	 * tens of milliseconds, so a signal is looked for between them */
 	forces_accel(im->fo, t, x, v, im->a);
+	if (give_up(im))
+		return;
 	jacobian_eval(&im->jc, x);
+	if (give_up(im))
+		return;
 	jacobian_mul(&im->jc, 1, 0, v, im->q);
 	for (i = 0; i < n3; i++)
 		im->b[i] = h * (cl->mass[i / 3] * im->a[i] - h * im->q[i]);
 	release(im, im->b);
 	filter(im, im->b);
 
+	if (give_up(im))
+		return;
 	/* block Jacobi: each node's 3 x 3 block of the system, inverted */
 	memset(im->pre, 0, 3 * n3 * sizeof *im->pre);
 	jacobian_block_diag(&im->jc, h * h, h, im->pre);
@@ -210,6 +288,10 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	for (it = 0; it < im->max_iter && rr > stop2; it++) {
 		double pq, alpha, rz_new, beta;
 
+		if (im->stop != NULL && *im->stop) {
+			im->stopped = true;	/* the caller drops this step */
+			break;
+		}
 		system_mul(im, h, im->p, im->q);
 		pq = dot(im->p, im->q, n3);
 		if (!(pq > 0))
@@ -232,10 +314,13 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	im->last_iters = it;
 	if (rr > stop2)		/* out of iterations, or p went flat */
 		im->unconverged++;
+	if (give_up(im))	/* a product cut short may have ended the loop */
+		return;
 
-	memset(im->ncon, 0, (size_t)cl->n);
 	for (i = 0; i < n3; i++) {
 		y_out[n3 + i] = v[i] + im->dv[i];
 		y_out[i] = x[i] + h * y_out[n3 + i];
 	}
+	friction(im, h, x, y_out);
+	memset(im->ncon, 0, (size_t)cl->n);
 }

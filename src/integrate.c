@@ -1,6 +1,7 @@
 /* integrate.c: explicit one-step methods on flat arrays (implicit Euler is
  * implicit.c's). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +20,14 @@ static const struct {
 	/* Its 5th-order solution is neutrally stable only for h*omega < 1. */
 	[INTEG_DOPRI5] = { "dopri5", 5, 1.0, 7 },
 	[INTEG_IMPLICIT_EULER] = { "implicit-euler", 1, INFINITY, 0 },
+	[INTEG_FAST] = { "fast", 1, INFINITY, 0 },
 };
+
+bool
+integrator_is_implicit(enum integrator_kind kind)
+{
+	return kind == INTEG_IMPLICIT_EULER || kind == INTEG_FAST;
+}
 
 const char *
 integrator_name(enum integrator_kind kind)
@@ -40,6 +48,24 @@ integrator_from_name(const char *name, enum integrator_kind *kind)
 	return -1;
 }
 
+void
+integrator_names(char *buf, size_t len)
+{
+	size_t at = 0;
+	int k, n;
+
+	if (len == 0)
+		return;
+	buf[0] = '\0';
+	for (k = 0; k < INTEG_COUNT && at < len; k++) {
+		n = snprintf(buf + at, len - at, "%s%s", k == 0 ? "" : k + 1 == INTEG_COUNT ?
+		    " or " : ", ", methods[k].name);
+		if (n < 0)
+			return;
+		at += (size_t)n;
+	}
+}
+
 int
 integrator_order(enum integrator_kind kind)
 {
@@ -49,7 +75,7 @@ integrator_order(enum integrator_kind kind)
 double
 integrator_default_tolerance(enum integrator_kind kind)
 {
-	return kind == INTEG_IMPLICIT_EULER ? 1e-3 : 1e-6;
+	return integrator_is_implicit(kind) ? 1e-3 : 1e-6;
 }
 
 double
@@ -233,6 +259,7 @@ integrator_step(struct integrator *in, rhs_fn f, void *ctx, double t, const doub
 	case INTEG_DOPRI5:
 		return step_dopri5(in, f, ctx, t, y, y_out, dt, dt_next);
 	case INTEG_IMPLICIT_EULER:
+	case INTEG_FAST:
 	case INTEG_COUNT:
 		return -1;
 	}

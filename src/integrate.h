@@ -6,6 +6,7 @@
 #ifndef DRAPE_INTEGRATE_H
 #define DRAPE_INTEGRATE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 enum integrator_kind {
@@ -17,6 +18,9 @@ enum integrator_kind {
 	/* Linearly implicit Euler: named and numbered here, but stepped by
 	 * implicit.c, which needs the forces' Jacobian and not only f. */
 	INTEG_IMPLICIT_EULER,
+	/* The fast path: implicit Euler at steps of a frame, its solve
+	 * preconditioned along the yarns (hess.h); implicit.c steps it too. */
+	INTEG_FAST,
 	INTEG_COUNT
 };
 
@@ -33,7 +37,13 @@ struct integrator {
 };
 
 const char *integrator_name(enum integrator_kind kind);
+/* implicit-euler and fast: stepped by implicit.c. */
+bool integrator_is_implicit(enum integrator_kind kind);
 int integrator_from_name(const char *name, enum integrator_kind *kind);
+/* "rk4, euler, ... or fast" into buf (cut to len): every name, from the
+ * table, for the messages that say what was expected, so that none of
+ * them can leave an integrator out. */
+void integrator_names(char *buf, size_t len);
 
 /* Order of accuracy, and the largest h*omega for which an undamped
  * oscillator of angular frequency omega stays bounded (0 for methods that

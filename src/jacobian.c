@@ -39,6 +39,8 @@ jacobian_eval(struct jacobian *jc, const double *x)
 	size_t s;
 
 	for (s = 0; s < cl->nsprings; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct spring *sp = &cl->springs[s];
 		vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
 		double len = v3_len(d), *e = jc->spring + 5 * s;
@@ -52,6 +54,8 @@ jacobian_eval(struct jacobian *jc, const double *x)
 		e[4] = len > sp->rest ? sp->k * (1 - sp->rest / len) : 0;
 	}
 	for (s = 0; s < cl->ncorners; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct corner *co = &cl->corners[s];
 		vec3 xc = v3_load(x + 3 * co->c);
 		vec3 e1 = v3_sub(v3_load(x + 3 * co->a), xc), e2 = v3_sub(v3_load(x + 3 * co->b), xc);
@@ -68,6 +72,8 @@ jacobian_eval(struct jacobian *jc, const double *x)
 		v3_store(e + 3, v3_madd(v3_scale(e1, inv12), e2, -c * l1s * q));
 	}
 	for (s = 0; s < cl->nhinges; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct hinge *hg = &cl->hinges[s];
 		vec3 xb = v3_load(x + 3 * hg->b);
 		vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
@@ -104,6 +110,8 @@ jacobian_mul(const struct jacobian *jc, double ck, double cc, const double *p, d
 
 	memset(out, 0, (size_t)cl->n * 3 * sizeof *out);
 	for (s = 0; s < cl->nsprings; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct spring *sp = &cl->springs[s];
 		const double *e = jc->spring + 5 * s;
 		vec3 u = v3_load(e), dp = v3_sub(v3_load(p + 3 * sp->a), v3_load(p + 3 * sp->b));
@@ -116,6 +124,8 @@ jacobian_mul(const struct jacobian *jc, double ck, double cc, const double *p, d
 		v3_addto(out + 3 * sp->b, v3_neg(f));
 	}
 	for (s = 0; s < cl->ncorners; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct corner *co = &cl->corners[s];
 		const double *e = jc->corner + 6 * s;
 		vec3 ga = v3_load(e), gb = v3_load(e + 3);
@@ -128,6 +138,8 @@ jacobian_mul(const struct jacobian *jc, double ck, double cc, const double *p, d
 		v3_addto(out + 3 * co->c, v3_scale(v3_add(ga, gb), -w));
 	}
 	for (s = 0; s < cl->nhinges; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct hinge *hg = &cl->hinges[s];
 		const double *e = jc->hinge + 10 * s;
 		vec3 pb = v3_load(p + 3 * hg->b);
@@ -167,6 +179,8 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 	int i, end;
 
 	for (s = 0; s < cl->nsprings; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct spring *sp = &cl->springs[s];
 		const double *e = jc->spring + 5 * s;
 		int node[2] = { sp->a, sp->b };
@@ -180,6 +194,8 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 		}
 	}
 	for (s = 0; s < cl->ncorners; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct corner *co = &cl->corners[s];
 		const double *e = jc->corner + 6 * s;
 		double k = ck * co->k;
@@ -189,6 +205,8 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 		add_outer(blocks + 9 * co->c, v3_add(v3_load(e), v3_load(e + 3)), k);
 	}
 	for (s = 0; s < cl->nhinges; s++) {
+		if (forces_poll(jc->fo, s))
+			return;
 		const struct hinge *hg = &cl->hinges[s];
 		const double *e = jc->hinge + 10 * s;
 		double k = ck * hg->k;

@@ -13,19 +13,33 @@ usage(FILE *f)
 	    "       drape SCENE\n"
 	    "       drape run [--headless] [--until T] [--integrator NAME] [--dt DT]\n"
 	    "                 [--final-obj FILE] [--record FILE.drr] [--keyframe-every N]\n"
-	    "                 [-C | --no-color] [-d | --delay TENTHS] [--paused] SCENE\n"
+	    "                 [-C | --no-color] [-d | --delay TENTHS] [--paused]\n"
+	    "                 [--ascii | --unicode | --blocks] [--set SECTION.KEY=VALUE]...\n"
+	    "                 [--summary text|json|csv] SCENE\n"
 	    "       drape run --resume FILE.drr[@STEP] [--until T] [--record FILE.drr]\n"
-	    "       drape replay [-C | --no-color] [-d | --delay TENTHS] FILE.drr\n"
+	    "                 [--summary text|json|csv]\n"
+	    "       drape replay [-C | --no-color] [-d | --delay TENTHS]\n"
+	    "                 [--ascii | --unicode | --blocks] FILE.drr\n"
 	    "       drape info FILE.drr\n"
 	    "       drape events [--node N] [--type T] [--from STEP] [--to STEP] FILE.drr\n"
 	    "       drape export [--pc2 OUT.pc2] [--obj REST.obj] [--obj-seq DIR] FILE.drr\n"
-	    "       drape check [--every N] SCENE|OBJ...\n"
-	    "       drape snapshot [--step N] [--view front|side|top|iso] [--size WxH]\n"
-	    "                 [--perspective] SCENE|FILE.drr\n"
+	    "       drape check [--every N] [--set SECTION.KEY=VALUE]... SCENE|OBJ...\n"
+	    "       drape snapshot [--step N | --time T] [--view front|side|top|iso]\n"
+	    "                 [--size WxH] [--perspective] [--zoom Z] [--centre X,Y,Z]\n"
+	    "                 [--ascii | --unicode | --blocks] [--set SECTION.KEY=VALUE]...\n"
+	    "                 SCENE|FILE.drr\n"
+	    "       drape snapshot --png OUT.png [--step N | --time T | --strip T1,T2,...]\n"
+	    "                 [--frames K] [--color shade|strain|warp|weft|shear|contact]\n"
+	    "                 [--range R] [--size WxH] [--view ...] [--perspective]\n"
+	    "                 [--zoom Z] [--centre X,Y,Z] [--set SECTION.KEY=VALUE]...\n"
+	    "                 SCENE|FILE.drr\n"
+	    "       drape plot [--png OUT.png] FILE.drr\n"
 	    "       drape ccd [--method seed|ccd] [--inside angle|crossing] [--kind vf|ee] FILE.csv...\n"
 	    "\n"
-	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5, implicit-euler.\n"
+	    "Integrators: rk4 (default), euler, symplectic-euler, rk2, dopri5, implicit-euler, fast.\n"
 	    "T and DT are times in seconds, or with a unit (ms, us); DT may be 'auto'.\n"
+	    "--set changes a scene's value as its file would (plane#2.friction for the\n"
+	    "second [plane]); --summary json|csv prints the run's record for programs.\n"
 	    "See drape(1) and drape-scene(5).\n", f);
 }
 
@@ -40,9 +54,27 @@ cmd_option_error(const char *cmd, char **argv)
 	return EXIT_USAGE;
 }
 
+/* The subcommands, by name; `drape SCENE` is `drape run SCENE`. */
+static const struct command {
+	const char *name;
+	int (*run)(int argc, char **argv);
+} commands[] = {
+	{ "run", cmd_run },
+	{ "replay", cmd_replay },
+	{ "info", cmd_info },
+	{ "events", cmd_events },
+	{ "export", cmd_export },
+	{ "snapshot", cmd_snapshot },
+	{ "check", cmd_check },
+	{ "ccd", cmd_ccd },
+	{ "plot", cmd_plot },
+};
+
 int
 main(int argc, char **argv)
 {
+	size_t i;
+
 	if (argc < 2) {
 		usage(stderr);
 		return EXIT_USAGE;
@@ -55,27 +87,13 @@ main(int argc, char **argv)
 		printf("drape %s\n", PACKAGE_VERSION);
 		return EXIT_OK;
 	}
-	if (strcmp(argv[1], "run") == 0)
-		return cmd_run(argc - 1, argv + 1);
-	if (strcmp(argv[1], "ccd") == 0)
-		return cmd_ccd(argc - 1, argv + 1);
-	if (strcmp(argv[1], "check") == 0)
-		return cmd_check(argc - 1, argv + 1);
-	if (strcmp(argv[1], "snapshot") == 0)
-		return cmd_snapshot(argc - 1, argv + 1);
-	if (strcmp(argv[1], "replay") == 0)
-		return cmd_replay(argc - 1, argv + 1);
-	if (strcmp(argv[1], "info") == 0)
-		return cmd_info(argc - 1, argv + 1);
-	if (strcmp(argv[1], "events") == 0)
-		return cmd_events(argc - 1, argv + 1);
-	if (strcmp(argv[1], "export") == 0)
-		return cmd_export(argc - 1, argv + 1);
+	for (i = 0; i < sizeof commands / sizeof commands[0]; i++)
+		if (strcmp(argv[1], commands[i].name) == 0)
+			return commands[i].run(argc - 1, argv + 1);
 	if (argv[1][0] == '-') {
 		fprintf(stderr, "drape: unknown option '%s'\n", argv[1]);
 		usage(stderr);
 		return EXIT_USAGE;
 	}
-	/* `drape SCENE` is `drape run SCENE`: the TUI on a terminal. */
 	return cmd_run(argc, argv);
 }

@@ -5,6 +5,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +21,12 @@ struct reader {
 	struct drape_err *err;
 	struct mesh *m;
 	size_t xcap, tricap;	/* in vertices and triangles */
+	uint64_t bytes;		/* read so far */
+	int binary_line;	/* the first line with a byte no text holds, 0: none */
+	int binary_byte;
+	unsigned char blk[65536];	/* the file, a block at a time */
+	size_t pos, len;
+	bool eof;
 };
 
 static int
@@ -104,8 +111,8 @@ read_vertex(struct reader *r, const char *s)
 	while (*(s = skip_space(s)) != '\0')
 		if (read_number(r, &s, "an extra vertex value", &extra) != 0)
 			return -1;
-	if (m->nverts == INT_MAX)
-		return read_fail(r, "expected at most %d vertices", INT_MAX);
+	if (m->nverts == OBJ_MAX_VERTICES)
+		return read_fail(r, "expected at most %d vertices", OBJ_MAX_VERTICES);
 	if ((size_t)m->nverts == r->xcap) {
 		size_t cap = grown(r->xcap, r->xcap + 1, 3 * sizeof *m->x);
 		double *x;
@@ -168,6 +175,9 @@ read_face(struct reader *r, const char *s)
 		if (k >= 2) {
 			int *t;
 
+			if (m->ntri == OBJ_MAX_TRIANGLES)
+				return read_fail(r, "expected at most %d triangles (a polygon of n "
+				    "vertices makes n - 2)", OBJ_MAX_TRIANGLES);
 			if (m->ntri == r->tricap) {
 				size_t cap = grown(r->tricap, r->tricap + 1, 3 * sizeof *t);
 
@@ -191,13 +201,15 @@ read_face(struct reader *r, const char *s)
 }
 
 static int
-read_line(struct reader *r, char *line)
+read_line(struct reader *r, char *line, size_t n)
 {
-	char *hash = strchr(line, '#');
+	char *hash;
 	const char *s;
 	size_t len;
 
-	if (hash != NULL)
+	if (n == 0)
+		return 0;
+	if ((hash = memchr(line, '#', n)) != NULL)
 		*hash = '\0';
 	s = skip_space(line);
 	len = token_len(s);
@@ -208,39 +220,123 @@ read_line(struct reader *r, char *line)
 	return 0;
 }
 
+/* A byte that no text file holds (the whitespace controls aside). */
+static int
+not_text(int c)
+{
+	return (c < 0x20 && c != '\t' && c != '\r' && c != '\v' && c != '\f') || c == 0x7f;
+}
+
+/* The next line of f into line (OBJ_MAX_LINE + 1 bytes), its newline
+ * dropped: 1, 0 at the end of the file, -1 with err set. The file is read
+ * a block at a time into r->blk. */
+static int
+next_line(struct reader *r, FILE *f, char *line, size_t *len)
+{
+	size_t n = 0, i;
+	bool nl = false;
+
+	r->line++;
+	while (!nl) {
+		const unsigned char *p, *stop;
+		size_t k;
+
+		if (r->pos == r->len) {
+			if (r->eof)
+				break;
+			r->pos = 0;
+			r->len = fread(r->blk, 1, sizeof r->blk, f);
+			if (r->len < sizeof r->blk) {
+				r->eof = true;
+				if (ferror(f)) {
+					err_set(r->err, "%s: read failed: %s", r->path, strerror(errno));
+					return -1;
+				}
+			}
+			if ((r->bytes += r->len) > OBJ_MAX_BYTES)
+				return read_fail(r, "expected a file of at most %d MiB",
+				    OBJ_MAX_BYTES >> 20);
+			continue;
+		}
+		p = r->blk + r->pos;
+		stop = *p == '\n' ? p : memchr(p, '\n', r->len - r->pos);
+		k = stop != NULL ? (size_t)(stop - p) : r->len - r->pos;
+		nl = stop != NULL;
+		r->pos += k + nl;
+		if (k > OBJ_MAX_LINE - n)
+			return read_fail(r, "expected a line of at most %d bytes", OBJ_MAX_LINE);
+		for (i = 0; i < k; i++)
+			if (not_text(p[i])) {
+				if (p[i] == '\0')
+					return read_fail(r, "expected text (a Wavefront OBJ file), found "
+					    "a NUL byte");
+				if (r->binary_line == 0) {
+					r->binary_line = r->line;
+					r->binary_byte = p[i];
+				}
+			}
+		memcpy(line + n, p, k);
+		n += k;
+	}
+	line[n] = '\0';
+	*len = n;
+	if (r->line == 1 && n >= 3 && memcmp(line, "\xef\xbb\xbf", 3) == 0)
+		return read_fail(r, "expected plain text, found a UTF-8 byte order mark (EF BB BF) "
+		    "at the start: save the file as UTF-8 without BOM");
+	return nl || n > 0 ? 1 : 0;
+}
+
+int
+mesh_read_obj(struct mesh *m, FILE *f, const char *name, struct drape_err *err)
+{
+	struct reader r;
+	char *line;
+	size_t n = 0;
+	int rc;
+
+	memset(m, 0, sizeof *m);
+	memset(&r, 0, sizeof r);
+	r.path = name;
+	r.err = err;
+	r.m = m;
+	if ((line = malloc(OBJ_MAX_LINE + 1)) == NULL) {
+		err_set(err, "%s: out of memory", name);
+		return -1;
+	}
+	while ((rc = next_line(&r, f, line, &n)) == 1 && (rc = read_line(&r, line, n)) == 0)
+		;
+	free(line);
+	if (rc == 0 && m->ntri == 0) {
+		if (r.binary_line > 0)
+			err_set(err, "%s: expected at least one face ('f' line), found none: it is "
+			    "not a text file (byte 0x%02x on line %d)", name, r.binary_byte,
+			    r.binary_line);
+		else
+			err_set(err, "%s: expected at least one face ('f' line), found none", name);
+		rc = -1;
+	}
+	if (rc != 0)
+		mesh_free(m);
+	return rc;
+}
+
 int
 mesh_load_obj(struct mesh *m, const char *path, struct drape_err *err)
 {
-	struct reader r = { path, 0, err, m, 0, 0 };
 	FILE *f;
-	char *line = NULL;
-	size_t cap = 0;
-	int rc = 0;
+	int rc;
 
 	memset(m, 0, sizeof *m);
 	if ((f = fopen(path, "r")) == NULL) {
 		err_set(err, "%s: cannot open: %s", path, strerror(errno));
 		return -1;
 	}
-	while (rc == 0 && getline(&line, &cap, f) != -1) {
-		r.line++;
-		rc = read_line(&r, line);
-	}
-	free(line);
-	if (rc == 0 && ferror(f)) {
-		err_set(err, "%s: read failed: %s", path, strerror(errno));
-		rc = -1;
-	}
+	rc = mesh_read_obj(m, f, path, err);
 	if (fclose(f) != 0 && rc == 0) {
 		err_set(err, "%s: read failed: %s", path, strerror(errno));
-		rc = -1;
-	}
-	if (rc == 0 && m->ntri == 0) {
-		err_set(err, "%s: expected at least one face ('f' line), found none", path);
-		rc = -1;
-	}
-	if (rc != 0)
 		mesh_free(m);
+		rc = -1;
+	}
 	return rc;
 }
 

@@ -5,6 +5,7 @@
 #define DRAPE_MESH_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "err.h"
 #include "vec3.h"
@@ -17,6 +18,12 @@ struct mesh {
 	size_t ntri;
 };
 
+/* What an OBJ file may hold: anything larger is refused with its line. */
+#define OBJ_MAX_LINE 65536		/* bytes in a line, its newline aside */
+#define OBJ_MAX_BYTES (256 << 20)	/* bytes in the file */
+#define OBJ_MAX_VERTICES (1 << 22)
+#define OBJ_MAX_TRIANGLES (1 << 23)	/* after cutting polygons into triangles */
+
 /*
  * Reads the v and f lines of a Wavefront OBJ file. Faces may be written
  * v, v/vt, v//vn or v/vt/vn; a negative index counts back from the last
@@ -25,11 +32,14 @@ struct mesh {
  * An index must name a vertex read before it.
  *
  * Returns 0, or -1 with err set and nothing allocated: "PATH:LINE: expected
- * ..." for a malformed number, an index out of range or zero and a face of
- * fewer than 3 vertices; "PATH: cannot open: ..."; "PATH: expected ..." for
- * a file with no faces.
+ * ..." for a malformed number, an index out of range or zero, a face of
+ * fewer than 3 vertices, a NUL byte, a byte order mark, and a line, a file
+ * or a count over the bounds above; "PATH: cannot open: ..."; "PATH:
+ * expected ..." for a file with no faces (saying so when it is not text).
  */
 int mesh_load_obj(struct mesh *m, const char *path, struct drape_err *err);
+/* The same from an open stream, named name in messages. */
+int mesh_read_obj(struct mesh *m, FILE *f, const char *name, struct drape_err *err);
 
 /* The regular icosahedron with the given centre and circumradius: 12
  * vertices, 20 faces oriented outward. Returns 0, or -1 if out of memory. */

@@ -2,8 +2,11 @@
 #include <float.h>
 #include <math.h>
 
+#include <stddef.h>
+
 #include "narrow.h"
 
+const char *const narrow_mode_name[] = { "seed", "ccd", NULL };
 const char *const contact_type_name[CONTACT_NTYPES] = {
 	"node-node", "node-edge", "node-face", "edge-edge", "obstacle"
 };

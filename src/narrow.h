@@ -10,6 +10,11 @@
 
 #include "vec3.h"
 
+/* Which narrow phase a scene runs: the chapter's test (below) once a
+ * step, or the continuous one of ccd.h, repeated until no contact is left. */
+enum narrow_mode { NARROW_SEED, NARROW_CCD };
+extern const char *const narrow_mode_name[];	/* NULL-terminated, for the parser */
+
 /* How eq. 9-10's question "is Q inside ABC?" is answered. */
 enum inside_test {
 	INSIDE_ANGLE,		/* angle sum 2*pi within eps = 2*pi/100 (eq. 9-10) */

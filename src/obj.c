@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "obj.h"
+#include "outfile.h"
 
 int
 obj_write(const char *path, const double *x, int n, const int *tri, size_t ntri,
@@ -14,12 +15,15 @@ obj_write(const char *path, const double *x, int n, const int *tri, size_t ntri,
 	char *tmp = malloc(len);
 	FILE *f;
 	int p, bad = 0;
+	bool direct = outfile_is_special(path);	/* /dev/null: no rename over it */
 
 	if (tmp == NULL) {
 		err_set(err, "%s: out of memory", path);
 		return -1;
 	}
-	snprintf(tmp, len, "%s.tmp", path);
+	snprintf(tmp, len, "%s", path);
+	if (!direct)
+		snprintf(tmp, len, "%s.tmp", path);
 	if ((f = fopen(tmp, "w")) == NULL) {
 		err_set(err, "%s: cannot create: %s", tmp, strerror(errno));
 		free(tmp);
@@ -38,9 +42,10 @@ obj_write(const char *path, const double *x, int n, const int *tri, size_t ntri,
 		bad = 1;
 	if (fclose(f) != 0)
 		bad = 1;
-	if (bad || rename(tmp, path) != 0) {
+	if (bad || (!direct && rename(tmp, path) != 0)) {
 		err_set(err, "%s: write failed: %s", path, strerror(errno));
-		remove(tmp);
+		if (!direct)
+			remove(tmp);
 		free(tmp);
 		return -1;
 	}

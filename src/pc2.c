@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "outfile.h"
 #include "pc2.h"
 
 static void
@@ -26,7 +27,8 @@ pc2_open(struct pc2_writer *w, const char *path, int points, float start, float 
 		return -1;
 	}
 	strcpy(w->path, path);
-	snprintf(w->tmp, len, "%s.tmp", path);
+	w->direct = outfile_is_special(path);	/* /dev/null: no rename over it */
+	snprintf(w->tmp, len, w->direct ? "%s" : "%s.tmp", path);
 	memcpy(w->h.magic, "POINTCACHE2\0", 12);
 	w->h.version = 1;
 	w->h.points = points;
@@ -68,9 +70,10 @@ pc2_close(struct pc2_writer *w, struct drape_err *err)
 	if (fclose(w->f) != 0)
 		bad = 1;
 	w->f = NULL;
-	if (bad || rename(w->tmp, w->path) != 0) {
+	if (bad || (!w->direct && rename(w->tmp, w->path) != 0)) {
 		err_set(err, "%s: write failed: %s", w->path, strerror(errno));
-		remove(w->tmp);
+		if (!w->direct)
+			remove(w->tmp);
 		release(w);
 		return -1;
 	}
@@ -83,7 +86,7 @@ pc2_abort(struct pc2_writer *w)
 {
 	if (w->f != NULL)
 		fclose(w->f);
-	if (w->tmp != NULL)
+	if (w->tmp != NULL && !w->direct)
 		remove(w->tmp);
 	release(w);
 }

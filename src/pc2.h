@@ -6,6 +6,7 @@
 #ifndef DRAPE_PC2_H
 #define DRAPE_PC2_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -22,7 +23,8 @@ _Static_assert(sizeof(struct pc2_header) == 32, "the PC2 header is 32 bytes");
 
 struct pc2_writer {
 	FILE *f;
-	char *path, *tmp;
+	char *path, *tmp;	/* tmp is path itself when direct */
+	bool direct;		/* not a regular file (outfile.h): written in place */
 	struct pc2_header h;
 };
 

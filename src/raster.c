@@ -95,21 +95,13 @@ raster_clear(struct raster *r)
 		r->depth[i] = -INFINITY;
 }
 
-/* Cells per metre across. */
-static double
-scale(const struct raster *r, const struct camera *cam)
-{
-	double side = fmin((double)r->w, (double)r->h * RASTER_ASPECT);
-
-	return cam->zoom * side / (2 * cam->radius);
-}
-
 bool
-raster_project(const struct raster *r, const struct camera *cam, vec3 p, double *col,
+camera_project(const struct camera *cam, vec3 p, int w, int h, double aspect, double *col,
     double *row, double *z)
 {
 	vec3 q = camera_view(cam, p);
-	double f = 1, s = scale(r, cam);
+	/* cells per metre across */
+	double f = 1, s = cam->zoom * fmin((double)w, (double)h * aspect) / (2 * cam->radius);
 
 	if (cam->perspective) {
 		double eye = EYE_DISTANCE * cam->radius;
@@ -118,10 +110,17 @@ raster_project(const struct raster *r, const struct camera *cam, vec3 p, double 
 			return false;
 		f = eye / (eye - q.z);
 	}
-	*col = 0.5 * r->w + (q.x * f + cam->pan_x) * s;
-	*row = 0.5 * r->h - (q.y * f + cam->pan_y) * s / RASTER_ASPECT;
+	*col = 0.5 * w + (q.x * f + cam->pan_x) * s;
+	*row = 0.5 * h - (q.y * f + cam->pan_y) * s / aspect;
 	*z = q.z;
 	return true;
+}
+
+bool
+raster_project(const struct raster *r, const struct camera *cam, vec3 p, double *col,
+    double *row, double *z)
+{
+	return camera_project(cam, p, r->w, r->h, RASTER_ASPECT, col, row, z);
 }
 
 /* The ramp character of a surface with view-space normal n: lit from the

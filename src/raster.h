@@ -57,6 +57,14 @@ void camera_preset(struct camera *cam, enum view_preset preset, vec3 target, dou
 /* A point in view space (before projection). */
 vec3 camera_view(const struct camera *cam, vec3 p);
 
+/* Projects p onto a w x h grid of cells aspect times as tall as they are
+ * wide (RASTER_ASPECT for a terminal, 1 for square pixels): *col and *row
+ * (may fall outside it) and the view-space depth *z. Returns false when p
+ * is behind the perspective camera. The centre of the grid is at
+ * (w/2, h/2); the framed sphere fills its smaller side at zoom 1. */
+bool camera_project(const struct camera *cam, vec3 p, int w, int h, double aspect, double *col,
+    double *row, double *z);
+
 /* The raster starts empty (w = h = 0). */
 void raster_init(struct raster *r);
 /* Resizes (w, h >= 1) and clears. Returns 0, or -1 if out of memory (then
@@ -65,9 +73,7 @@ int raster_resize(struct raster *r, int w, int h);
 void raster_clear(struct raster *r);
 void raster_free(struct raster *r);
 
-/* Projects p onto the grid: *col and *row (may fall outside it) and the
- * view-space depth *z. Returns false when p is behind the perspective
- * camera. The centre of the grid is at (w/2, h/2). */
+/* camera_project onto the raster's grid of terminal cells. */
 bool raster_project(const struct raster *r, const struct camera *cam, vec3 p, double *col,
     double *row, double *z);
 

@@ -1,4 +1,5 @@
 /* record.c: what a run writes into its replay, and when. */
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -8,7 +9,11 @@
 long
 record_default_keyframes(const struct stepper *st)
 {
-	double k = floor(0.5 / st->dt_set + 0.5);
+	struct stepper_report r;
+	double k;
+
+	stepper_report(st, &r);
+	k = floor(0.5 / r.dt_set + 0.5);
 
 	return k >= 1 && k < 1e9 ? (long)k : 1;
 }
@@ -17,25 +22,38 @@ record_default_keyframes(const struct stepper *st)
  * of that time counts as reaching it (fixed steps land on it up to
  * rounding). */
 static long
-frames_reached(const struct recorder *rc, const struct stepper *st)
+frames_reached(const struct recorder *rc, const struct stepper_report *r)
 {
-	return (long)floor((st->t + 1e-6 * st->dt_set) * rc->rate);
+	double k = floor((r->t + 1e-6 * r->dt_set) * rc->rate);
+
+	/* the scene's checks keep duration * output_rate to SCENE_MAX_FRAMES;
+	 * past that (a scene made by hand) the count saturates rather than
+	 * overflow a long */
+	if (!(k >= 0))
+		return 0;
+	return k < (double)(LONG_MAX / 2) ? (long)k : LONG_MAX / 2;
 }
 
 static int
 keyframe(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 {
-	rc->last_key = st->step;
-	return replay_write_keyframe(&rc->w, st->step, st->t, st->dt, st->y, stepper_hash(st), err);
+	struct stepper_state s;
+
+	stepper_save(st, &s);
+	rc->last_key = s.step;
+	return replay_write_keyframe(&rc->w, s.step, s.t, s.dt, s.y, s.hash, err);
 }
 
 int
 record_open(struct recorder *rc, const char *path, const struct stepper *st,
     long keyframe_every, struct drape_err *err)
 {
-	const struct scene *sc = st->sc;
+	const struct scene *sc = stepper_scene(st);
+	const struct cloth *cl = &stepper_network(st)->cl;
+	struct stepper_report r;
 	struct replay_meta m;
 
+	stepper_report(st, &r);
 	memset(rc, 0, sizeof *rc);
 	memset(&m, 0, sizeof m);
 	m.name = sc->name;
@@ -45,20 +63,23 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	m.duration = sc->duration;
 	m.dt = sc->dt;
 	m.integrator = (int)sc->integrator;
-	m.dt_set = st->dt_set;
+	m.dt_set = r.dt_set;
 	m.output_rate = sc->output_rate;
 	m.keyframe_every = keyframe_every;
-	m.nodes = (uint32_t)st->cl.n;
-	m.triangles = (uint32_t)st->cl.ntri;
-	m.tri = st->cl.tri;
+	m.nodes = (uint32_t)cl->n;
+	m.triangles = (uint32_t)cl->ntri;
+	m.tri = cl->tri;
 	rc->rate = sc->output_rate;
 	rc->keyframe_every = keyframe_every;
 	rc->last_key = -1;
 	if (replay_writer_open(&rc->w, path, &m, err) != 0)
 		return -1;
-	rc->next_frame = frames_reached(rc, st) + 1;
+	rc->next_frame = frames_reached(rc, &r) + 1;
+	/* the first frame goes out at once: a replay killed at any moment
+	 * after this has a frame to show */
 	if (keyframe(rc, st, err) != 0 ||
-	    replay_write_frame(&rc->w, st->step, st->t, stepper_x(st), err) != 0) {
+	    replay_write_frame(&rc->w, r.step, r.t, stepper_x(st), err) != 0 ||
+	    replay_writer_flush(&rc->w, err) != 0) {
 		replay_writer_close(&rc->w, NULL);
 		return -1;
 	}
@@ -68,27 +89,27 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 int
 record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 {
+	struct stepper_report r;
 	struct replay_step s;
 	long reached;
 
+	stepper_report(st, &r);
 	memset(&s, 0, sizeof s);
-	s.step = st->step - 1;	/* the step just taken: its events carry this number */
-	s.t = st->t;
-	s.dt = st->dt;
-	s.col = st->col.st;
-	s.nev = (long)st->col.nev;
-	if (!st->col.active) {
-		memset(&s.col, 0, sizeof s.col);
-		s.nev = 0;
+	s.step = r.step - 1;	/* the step just taken: its events carry this number */
+	s.t = r.t;
+	s.dt = r.dt;
+	if (r.collisions) {
+		s.col = *r.last;
+		s.nev = (long)r.nev;
 	}
-	if (replay_write_step(&rc->w, &s, st->col.ev, err) != 0)
+	if (replay_write_step(&rc->w, &s, r.ev, err) != 0)
 		return -1;
-	if ((reached = frames_reached(rc, st)) >= rc->next_frame) {
+	if ((reached = frames_reached(rc, &r)) >= rc->next_frame) {
 		rc->next_frame = reached + 1;
-		if (replay_write_frame(&rc->w, st->step, st->t, stepper_x(st), err) != 0)
+		if (replay_write_frame(&rc->w, r.step, r.t, stepper_x(st), err) != 0)
 			return -1;
 	}
-	if (st->step % rc->keyframe_every == 0)
+	if (r.step % rc->keyframe_every == 0)
 		return keyframe(rc, st, err);
 	return 0;
 }
@@ -96,9 +117,11 @@ record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err
 int
 record_close(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 {
+	struct stepper_report r;
 	int bad = 0;
 
-	if (!rc->w.failed && rc->last_key != st->step && keyframe(rc, st, err) != 0)
+	stepper_report(st, &r);
+	if (!rc->w.failed && rc->last_key != r.step && keyframe(rc, st, err) != 0)
 		bad = 1;
 	if (replay_writer_close(&rc->w, bad ? NULL : err) != 0)
 		bad = 1;

@@ -2,10 +2,13 @@
  * packing, the writer and the hostile-file reader (drape-replay(5)). */
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <zlib.h>
 
+#include "clock.h"
 #include "frame_codec.h"
 #include "replay.h"
 
@@ -33,7 +36,7 @@
 #define NSTAT 33		/* 8-byte words of statistics per step */
 #define EVENT_BYTES 81		/* one event's columns: 4 * 4 + 1 + 8 * 8 */
 
-static const char file_magic[8] = { 'D', 'R', 'A', 'P', 'E', 'R', 'P', 'L' };
+static const char file_magic[REPLAY_MAGIC_LEN] = { 'D', 'R', 'A', 'P', 'E', 'R', 'P', 'L' };
 static const char chunk_magic[4] = { 'C', 'H', 'N', 'K' };
 
 /* ---- little helpers ---- */
@@ -269,6 +272,9 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	w->keyframe_every = m->keyframe_every;
 	w->frames_per_chunk = FRAMES_PER_CHUNK;
 	w->steps_per_chunk = STEPS_PER_CHUNK;
+	w->flush_every = REPLAY_FLUSH_SECONDS;
+	w->clock = clock_seconds;
+	w->last_flush = w->clock();
 	if ((w->path = malloc(strlen(path) + 1)) == NULL ||
 	    (w->fx = malloc(FRAMES_PER_CHUNK * n3 * sizeof *w->fx)) == NULL ||
 	    (w->fstep = malloc(FRAMES_PER_CHUNK * sizeof *w->fstep)) == NULL ||
@@ -287,8 +293,13 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	return 0;
 fail:
 	if (w->f != NULL) {
+		/* what it made, not /dev/full or a FIFO it was given */
+		struct stat sb;
+		bool made = fstat(fileno(w->f), &sb) == 0 && S_ISREG(sb.st_mode);
+
 		fclose(w->f);
-		remove(path);
+		if (made)
+			remove(path);
 	}
 	free(w->path);
 	free(w->fx);
@@ -300,6 +311,9 @@ fail:
 	memset(w, 0, sizeof *w);
 	return -1;
 }
+
+static int flush_steps(struct replay_writer *w, struct drape_err *err);
+static int flush_if_due(struct replay_writer *w, struct drape_err *err);
 
 static int
 flush_frames(struct replay_writer *w, struct drape_err *err)
@@ -341,7 +355,7 @@ replay_write_frame(struct replay_writer *w, long step, double t, const double *x
 	w->ft[w->nframes] = t;
 	if (++w->nframes == w->frames_per_chunk)
 		return flush_frames(w, err);
-	return 0;
+	return flush_if_due(w, err);
 }
 
 int
@@ -389,13 +403,13 @@ static void
 stat_words(const struct replay_step *s, uint64_t *w)
 {
 	const struct collide_stats *c = &s->col;
-	const struct hash_stats *h = &c->broad.hash;
+	const struct hash_stats *h = &c->hash;
 	int k, i = 0;
 
 	w[i++] = (uint64_t)s->step;
 	w[i++] = dbits(s->t);
 	w[i++] = dbits(s->dt);
-	w[i++] = dbits(c->broad.cell);
+	w[i++] = dbits(c->cell);
 	w[i++] = (uint64_t)h->entries;
 	w[i++] = (uint64_t)h->cubes;
 	w[i++] = (uint64_t)h->shared;
@@ -404,17 +418,8 @@ stat_words(const struct replay_step *s, uint64_t *w)
 	w[i++] = (uint64_t)h->probe_max;
 	for (k = 0; k < HASH_HIST; k++)
 		w[i++] = (uint64_t)h->hist[k];
-	w[i++] = (uint64_t)c->broad.node_pairs;
-	w[i++] = (uint64_t)c->broad.vt_pairs;
-	w[i++] = (uint64_t)c->broad.ee_pairs;
-	w[i++] = c->broad.rebuilt;
-	w[i++] = (uint64_t)c->narrow_tests;
-	for (k = 0; k < CONTACT_NTYPES; k++)
-		w[i++] = (uint64_t)c->contacts[k];
-	w[i++] = (uint64_t)c->corrections;
-	w[i++] = (uint64_t)c->passes;
-	w[i++] = (uint64_t)c->frozen;
-	w[i++] = (uint64_t)c->unresolved;
+	for (k = 0; k < STAT_COUNT; k++)	/* in stat_field's order */
+		w[i++] = (uint64_t)c->n[k];
 	w[i++] = (uint64_t)s->nev;
 }
 
@@ -422,14 +427,14 @@ static void
 stat_from_words(const uint64_t *w, struct replay_step *s)
 {
 	struct collide_stats *c = &s->col;
-	struct hash_stats *h = &c->broad.hash;
+	struct hash_stats *h = &c->hash;
 	int k, i = 0;
 
 	memset(s, 0, sizeof *s);
 	s->step = (long)w[i++];
 	s->t = bitsd(w[i++]);
 	s->dt = bitsd(w[i++]);
-	c->broad.cell = bitsd(w[i++]);
+	c->cell = bitsd(w[i++]);
 	h->entries = (long)w[i++];
 	h->cubes = (long)w[i++];
 	h->shared = (long)w[i++];
@@ -438,21 +443,12 @@ stat_from_words(const uint64_t *w, struct replay_step *s)
 	h->probe_max = (int)w[i++];
 	for (k = 0; k < HASH_HIST; k++)
 		h->hist[k] = (long)w[i++];
-	c->broad.node_pairs = (long)w[i++];
-	c->broad.vt_pairs = (long)w[i++];
-	c->broad.ee_pairs = (long)w[i++];
-	c->broad.rebuilt = w[i++] != 0;
-	c->narrow_tests = (long)w[i++];
-	for (k = 0; k < CONTACT_NTYPES; k++)
-		c->contacts[k] = (long)w[i++];
-	c->corrections = (long)w[i++];
-	c->passes = (int)w[i++];
-	c->frozen = (long)w[i++];
-	c->unresolved = (long)w[i++];
+	for (k = 0; k < STAT_COUNT; k++)
+		c->n[k] = (long)w[i++];
 	s->nev = (long)w[i++];
 }
 
-_Static_assert(NSTAT == 15 + HASH_HIST + CONTACT_NTYPES + 5, "NSTAT counts stat_words");
+_Static_assert(NSTAT == 11 + HASH_HIST + STAT_COUNT, "NSTAT counts stat_words");
 
 /* Event columns: step offset and node (u32, delta-coded down the column),
  * type (u8), other and obstacle (u32, as they are), then q, n, vn_before,
@@ -598,7 +594,30 @@ replay_write_step(struct replay_writer *w, const struct replay_step *s,
 	w->steps[w->nsteps++] = *s;
 	if (w->nsteps == w->steps_per_chunk || w->nev >= EVENTS_PER_CHUNK)
 		return flush_steps(w, err);
-	return 0;
+	return flush_if_due(w, err);
+}
+
+int
+replay_writer_flush(struct replay_writer *w, struct drape_err *err)
+{
+	if (w->failed) {
+		err_set(err, "%s: not written after an earlier write error", w->path);
+		return -1;
+	}
+	if (w->clock != NULL)
+		w->last_flush = w->clock();
+	return flush_frames(w, err) != 0 || flush_steps(w, err) != 0 ? -1 : 0;
+}
+
+/* The wall-clock flush: what is pending goes out once flush_every seconds
+ * have passed since the last time. */
+static int
+flush_if_due(struct replay_writer *w, struct drape_err *err)
+{
+	if (w->clock == NULL || w->nframes + w->nsteps == 0 ||
+	    !(w->clock() - w->last_flush >= w->flush_every))
+		return 0;
+	return replay_writer_flush(w, err);
 }
 
 int
@@ -836,6 +855,10 @@ scan(struct replay *r)
 		r->seen++;
 		off = next;
 	}
+	/* the writer puts the scene chunk right after the header: a file
+	 * that ends with its header was cut there */
+	if (r->seen == 0 && off == r->len)
+		r->cut = true;
 	r->cut_offset = off;
 	return 0;
 }
@@ -907,6 +930,14 @@ read_meta(struct replay *r, const struct replay_chunk *c, struct drape_err *err)
 	lt = get32(p + 64);
 	lv = get32(p + 68);
 	ntri = m->triangles;
+	if (!(m->duration > 0) || !isfinite(m->duration) || !(m->dt >= 0) || !isfinite(m->dt) ||
+	    !(m->dt_set > 0) || !isfinite(m->dt_set) || !(m->output_rate > 0) ||
+	    !isfinite(m->output_rate)) {
+		err_set(err, "the scene chunk holds a duration, step or output rate that is not "
+		    "a finite number greater than 0");
+		free(p);
+		return -1;
+	}
 	if (m->nodes != r->hdr.nodes || m->triangles != r->hdr.triangles ||
 	    META_FIXED + ln + lp + lt + lv + 12 * ntri != c->raw_len) {
 		err_set(err, "the scene chunk disagrees with the header or its own length");
@@ -994,6 +1025,7 @@ open_common(struct replay *r, const char *name, struct drape_err *err)
 	}
 	if (meta < 0) {
 		err_set(err, "%s: no intact scene chunk: %s", name,
+		    r->len == sizeof r->hdr ? "the file was cut short after its 64-byte header" :
 		    r->cut ? "the file was cut before it" : "it is damaged");
 		return -1;
 	}

@@ -102,7 +102,21 @@ struct replay_writer {
 	unsigned char *buf, *zbuf;	/* scratch, grown as needed */
 	size_t bufcap, zbufcap;
 	uint64_t bytes;		/* written so far */
+	/* Pending frames and steps are also written out once flush_every
+	 * seconds of clock() have passed since they last were, so that a
+	 * crash loses at most about that much of the run. Open sets
+	 * REPLAY_FLUSH_SECONDS and the monotonic clock; a test may set
+	 * others. Only chunk boundaries depend on it, never the content. */
+	double flush_every;
+	double (*clock)(void);
+	double last_flush;
 };
+
+#define REPLAY_FLUSH_SECONDS 1.0
+
+/* A file that begins with these 8 bytes is a replay (drape-replay(5)). */
+#define REPLAY_MAGIC "DRAPERPL"
+#define REPLAY_MAGIC_LEN 8
 
 int replay_writer_open(struct replay_writer *w, const char *path, const struct replay_meta *m,
     struct drape_err *err);
@@ -113,6 +127,8 @@ int replay_write_keyframe(struct replay_writer *w, long step, double t, double d
     const double *y, uint64_t hash, struct drape_err *err);
 int replay_write_step(struct replay_writer *w, const struct replay_step *s,
     const struct contact_event *ev, struct drape_err *err);
+/* Writes the pending frames and steps now, as chunks of their own. */
+int replay_writer_flush(struct replay_writer *w, struct drape_err *err);
 /* Writes what is pending, the index and the closed flag; frees w. Returns
  * 0, or -1 with a message (the file is then readable up to what was
  * written). */

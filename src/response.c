@@ -4,6 +4,21 @@
 
 #include "response.h"
 
+const char *const position_policy_name[] = { "keep", "q", "slide", NULL };
+
+vec3
+response_position(enum position_policy p, vec3 x0, vec3 touch, vec3 slid)
+{
+	switch (p) {
+	case POSITION_Q:
+		return touch;
+	case POSITION_SLIDE:
+		return slid;
+	default:
+		return x0;
+	}
+}
+
 vec3
 response_point_velocity(vec3 a, vec3 b, vec3 c, vec3 va, vec3 vb, vec3 vc, vec3 q)
 {

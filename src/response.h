@@ -6,6 +6,23 @@
 
 #include "vec3.h"
 
+/* Where a corrected node goes (§3.2). */
+enum position_policy {
+	POSITION_KEEP,		/* the node stays where it was at step k (the chapter) */
+	POSITION_Q,		/* the node moves to Q */
+	POSITION_SLIDE,		/* step k's normal offset, this step's tangential motion */
+};
+extern const char *const position_policy_name[];	/* NULL-terminated, for the parser */
+
+/* The one place that says what the policies mean: keep puts the node back
+ * at x0, its position at step k (the chapter's choice, after Volino et
+ * al.); q puts it where it touches the surface; slide restores step k's
+ * clearance along the normal and keeps this step's tangential motion (the
+ * chapter notes that keeping the whole position can lock a node that
+ * should slide). touch and slid depend on the kind of contact, so the
+ * caller computes them. */
+vec3 response_position(enum position_policy p, vec3 x0, vec3 touch, vec3 slid);
+
 /* What acts on the tangential part (eq. 17), which the impact leaves as it
  * is unless the scene asks for friction. */
 struct friction {

@@ -12,7 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "collide.h"
 #include "ini.h"
+#include "override.h"
+#include "replay.h"
 #include "scene.h"
 #include "units.h"
 
@@ -31,9 +34,11 @@ struct pctx {
 	const char *file;
 	struct drape_err *err;
 	struct scene *sc;
+	const struct override_text *ov;	/* the --set overrides, or NULL */
 	/* raw selectors, resolved once [cloth] has given the grid size */
 	struct raw_sel *raw;
 	size_t nraw, rawcap;
+	int cell_line;		/* of [collision] cell, 0: auto */
 };
 
 /* A node selector kept as text until the grid size is known. Its owner is
@@ -58,7 +63,7 @@ static const char *const move_keys[] = { "nodes", "velocity", "path", "start", "
 static const char *const load_keys[] = { "nodes", "force", "start", "stop", NULL };
 static const char *const collision_keys[] = {
 	"self", "broad", "narrow", "inside", "cell", "restitution", "friction", "viscous_friction",
-	"position", NULL
+	"position", "memory", NULL
 };
 static const char *const plane_keys[] = { "point", "normal", "friction", NULL };
 static const char *const box_keys[] = { "min", "max", "friction", NULL };
@@ -97,9 +102,6 @@ static const struct section_kind {
 	{ "icosahedron", icosahedron_keys, 0, read_obstacle },
 };
 
-const char *const broad_mode_name[] = { "seed", "grid", "brute", NULL };
-const char *const narrow_mode_name[] = { "seed", "ccd", NULL };
-const char *const position_policy_name[] = { "keep", "q", "slide", NULL };
 const char *const cloth_shape_name[] = { "square", "disc", NULL };
 static const char *const inside_test_name[] = { "angle", "crossing", NULL };
 static const char *const switch_name[] = { "off", "on", NULL };
@@ -117,7 +119,14 @@ fail(struct pctx *c, int line, const char *fmt, ...)
 	va_start(ap, fmt);
 	vsnprintf(msg, sizeof msg, fmt, ap);
 	va_end(ap);
-	err_set(c->err, "%s:%d: %s", c->file, line, msg);
+	if (c->ov != NULL) {	/* the file's line, or the --set that made it */
+		char where[300];
+
+		override_where(c->ov, c->file, line, where, sizeof where);
+		err_set(c->err, "%s: %s", where, msg);
+	} else {
+		err_set(c->err, "%s:%d: %s", c->file, line, msg);
+	}
 	return -1;
 }
 
@@ -196,6 +205,9 @@ get_numbers(struct pctx *c, const struct group *g, const char *key, enum unit_di
 		return fail(c, e->line, "%s: %s; expected %s%s, got '%s'", key, why,
 		    n > 1 ? "numbers for " : "", units_describe(dim), e->value);
 	for (k = 0; k < n; k++) {
+		if (dim == DIM_LENGTH && !(fabs(out[k]) <= SCENE_MAX_COORD))
+			return fail(c, e->line, "%s: expected %s of at most %g m either way, got '%s'",
+			    key, n > 1 ? "coordinates" : "a length", SCENE_MAX_COORD, e->value);
 		if (bound == POSITIVE && !(out[k] > 0))
 			return fail(c, e->line, "%s: expected %s greater than 0, got '%s'", key,
 			    units_describe(dim), e->value);
@@ -233,18 +245,28 @@ read_simulation(struct pctx *c, const struct group *g)
 		if ((sc->name = xstrdup(e->value)) == NULL)
 			return fail(c, e->line, "out of memory");
 	}
-	if ((e = find(g, "dt")) != NULL && strcmp(e->value, "auto") != 0) {
+	sc->dt_line = g->line;
+	if ((e = find(g, "dt")) != NULL)
+		sc->dt_line = e->line;
+	if (e != NULL && strcmp(e->value, "auto") != 0) {
 		char why[200];
 
 		if (units_parse(e->value, DIM_TIME, &sc->dt, 1, why, sizeof why) != 0 ||
 		    !(sc->dt > 0))
 			return fail(c, e->line, "dt: expected 'auto' or %s greater than 0, got '%s'",
 			    units_describe(DIM_TIME), e->value);
+		if (scene_steps(sc->duration, sc->dt) > SCENE_MAX_STEPS)
+			return fail(c, e->line, "dt: expected a step that covers the duration (%g s) "
+			    "in at most %.0e steps, got '%s' (%.3g steps)", sc->duration,
+			    SCENE_MAX_STEPS, e->value, scene_steps(sc->duration, sc->dt));
 	}
 	if ((e = find(g, "integrator")) != NULL &&
-	    integrator_from_name(e->value, &sc->integrator) != 0)
-		return fail(c, e->line, "integrator: expected rk4, euler, symplectic-euler, rk2 "
-		    "or dopri5, got '%s'", e->value);
+	    integrator_from_name(e->value, &sc->integrator) != 0) {
+		char names[200];
+
+		integrator_names(names, sizeof names);
+		return fail(c, e->line, "integrator: expected %s, got '%s'", names, e->value);
+	}
 	if (get_numbers(c, g, "tolerance", DIM_NONE, 1, POSITIVE, 0, &sc->tolerance) < 0)
 		return -1;
 	if ((e = find(g, "gravity")) != NULL) {
@@ -264,7 +286,30 @@ read_simulation(struct pctx *c, const struct group *g)
 	}
 	if (get_numbers(c, g, "output_rate", DIM_RATE, 1, POSITIVE, 0, &sc->output_rate) < 0)
 		return -1;
+	if (scene_frames(sc->duration, sc->output_rate) > SCENE_MAX_FRAMES) {
+		if ((e = find(g, "output_rate")) == NULL)
+			return fail(c, find(g, "duration")->line, "duration: expected at most %.0e "
+			    "frames at the output rate (%g per second), so at most %.4g s, got '%s'",
+			    SCENE_MAX_FRAMES, sc->output_rate, SCENE_MAX_FRAMES / sc->output_rate,
+			    find(g, "duration")->value);
+		return fail(c, e->line, "output_rate: expected at most %.0e frames over the "
+		    "duration (%g s), so at most %.4g per second, got '%s' (%.3g frames)",
+		    SCENE_MAX_FRAMES, sc->duration, SCENE_MAX_FRAMES / sc->duration, e->value,
+		    scene_frames(sc->duration, sc->output_rate));
+	}
 	return 0;
+}
+
+double
+scene_steps(double duration, double dt)
+{
+	return duration / dt;
+}
+
+double
+scene_frames(double duration, double output_rate)
+{
+	return duration * output_rate;
 }
 
 /* ---- [cloth] ---- */
@@ -372,6 +417,15 @@ read_cloth(struct pctx *c, const struct group *g)
 		return -1;
 	if ((e = find(g, "orientation")) != NULL && read_orientation(c, e) != 0)
 		return -1;
+	for (dir = 0; dir < 3; dir++) {
+		double far = sc->origin[dir] + sc->spacing * ((sc->nu - 1) * sc->warp_axis[dir] +
+		    (sc->nv - 1) * sc->weft_axis[dir]);
+
+		if (!(fabs(far) <= SCENE_MAX_COORD))
+			return fail(c, find(g, "spacing")->line, "spacing: the cloth reaches %g m "
+			    "from the origin along %c; expected all of it within %g m", fabs(far),
+			    "xyz"[dir], SCENE_MAX_COORD);
+	}
 	for (dir = 0; dir < 2; dir++)
 		if (m->bending_derived[dir])	/* a plate's E*t^3/12, Poisson ignored */
 			m->bending[dir] = m->modulus[dir] * pow(m->thickness, 3) / 12;
@@ -561,6 +615,10 @@ read_path(struct pctx *c, const struct ini_entry *e, struct scene_motion *m)
 		if (!(p[0] > prev))
 			return fail(c, e->line, "path: expected times after 0 that increase, got "
 			    "%g after %g", p[0], prev);
+		if (!(fabs(p[1]) <= SCENE_MAX_COORD && fabs(p[2]) <= SCENE_MAX_COORD &&
+		    fabs(p[3]) <= SCENE_MAX_COORD))
+			return fail(c, e->line, "path: expected displacements of at most %g m either "
+			    "way, got '%s'", SCENE_MAX_COORD, point);
 		prev = p[0];
 		m->npath++;
 		if (comma == NULL)
@@ -655,9 +713,17 @@ read_collision(struct pctx *c, const struct group *g)
 	o->narrow = narrow;
 	o->inside = inside;
 	o->position = position;
-	if ((e = find(g, "cell")) != NULL && strcmp(e->value, "auto") != 0 &&
-	    get_numbers(c, g, "cell", DIM_LENGTH, 1, POSITIVE, 1, &o->cell) < 0)
+	if ((e = find(g, "cell")) != NULL && strcmp(e->value, "auto") != 0) {
+		if (get_numbers(c, g, "cell", DIM_LENGTH, 1, POSITIVE, 1, &o->cell) < 0)
+			return -1;
+		c->cell_line = e->line;
+	}
+	if ((e = find(g, "memory")) != NULL && strcmp(e->value, "auto") != 0 &&
+	    get_numbers(c, g, "memory", DIM_BYTES, 1, POSITIVE, 1, &o->memory) < 0)
 		return -1;
+	if (o->memory != 0 && o->memory < 1e6)
+		return fail(c, e->line, "memory: expected 'auto' or at least 1 MB, got %g B",
+		    o->memory);
 	if (get_numbers(c, g, "restitution", DIM_NONE, 1, NONNEGATIVE, 0, &o->restitution) < 0 ||
 	    get_numbers(c, g, "friction", DIM_NONE, 1, NONNEGATIVE, 0, &o->friction) < 0 ||
 	    get_numbers(c, g, "viscous_friction", DIM_RATE, 1, NONNEGATIVE, 0, &o->viscous) < 0)
@@ -677,6 +743,25 @@ get_vec(struct pctx *c, const struct group *g, const char *key, int required, ve
 	if (rc == 1)
 		*v = v3_load(p);
 	return rc;
+}
+
+/* Every vertex, scaled and offset, within SCENE_MAX_COORD of the origin;
+ * the line blamed is the scale's, else the offset's, else the file's. */
+static int
+check_mesh_reach(struct pctx *c, const struct group *g, const struct mesh *m)
+{
+	const struct ini_entry *e = find(g, "scale");
+	int v, k;
+
+	if (e == NULL && (e = find(g, "offset")) == NULL)
+		e = find(g, "file");
+	for (v = 0; v < m->nverts; v++)
+		for (k = 0; k < 3; k++)
+			if (!(fabs(m->x[3 * v + k]) <= SCENE_MAX_COORD))
+				return fail(c, e->line, "%s: the mesh reaches %g m from the origin "
+				    "along %c (vertex %d); expected all of it within %g m", e->key,
+				    fabs(m->x[3 * v + k]), "xyz"[k], v + 1, SCENE_MAX_COORD);
+	return 0;
 }
 
 /* A mesh file is found beside the scene file unless its path is absolute. */
@@ -707,7 +792,7 @@ read_mesh(struct pctx *c, const struct group *g, struct obstacle *o)
 	    get_vec(c, g, "offset", 0, &offset) < 0)
 		return -1;
 	mesh_transform(&o->mesh, scale, offset);
-	return 0;
+	return check_mesh_reach(c, g, &o->mesh);
 }
 
 static int
@@ -768,6 +853,95 @@ read_obstacle(struct pctx *c, const struct group *g)
 /* ---- the whole file ---- */
 
 static void
+box_grow(double lo[3], double hi[3], const double p[3])
+{
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		lo[k] = fmin(lo[k], p[k]);
+		hi[k] = fmax(hi[k], p[k]);
+	}
+}
+
+/* The cubes of edge cell that [lo, hi] spans along each axis (as hash.c
+ * counts them) and in all: the first axis past SCENE_MAX_CELLS, 3 if the
+ * product is past SCENE_MAX_BOX_CELLS, or -1. */
+static int
+too_many_cells(const double lo[3], const double hi[3], double cell, double *cubes)
+{
+	double all = 1;
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		*cubes = floor((hi[k] - lo[k]) / cell) + 1;
+		if (!(*cubes <= SCENE_MAX_CELLS))
+			return k;
+		all *= *cubes;
+	}
+	*cubes = all;
+	return all <= SCENE_MAX_BOX_CELLS ? -1 : 3;
+}
+
+/* "along x", or "in all" */
+static const char *
+cells_where(int axis)
+{
+	static const char *const where[] = { "along x", "along y", "along z", "in its box" };
+
+	return where[axis];
+}
+
+/*
+ * The spatial hash numbers its cubes along each axis by int and the cubes
+ * of its box by int64 (hash.h): the cloth as it starts and the obstacle
+ * meshes, which the broad phase puts in it, must span at most
+ * SCENE_MAX_CELLS cubes along an axis and SCENE_MAX_BOX_CELLS in all, so
+ * that the box can grow a thousandfold in volume as the run goes before
+ * its keys overflow. The cube is the [collision] cell, or the spacing when
+ * it is auto (the seed broad phase's is larger: eq. 21).
+ */
+static int
+check_hash_extent(struct pctx *c)
+{
+	const struct scene *sc = c->sc;
+	double lo[3], hi[3], p[3], cell = sc->col.cell > 0 ? sc->col.cell : sc->spacing, cubes;
+	size_t o;
+	int k, v, axis;
+
+	/* the run's own rule, so that a mode without a hash (brute, bvh) is
+	 * never refused for its bound */
+	if (!collide_uses_hash(sc))
+		return 0;
+	for (k = 0; k < 3; k++) {
+		lo[k] = hi[k] = sc->origin[k];
+		p[k] = sc->origin[k] + sc->spacing * ((sc->nu - 1) * sc->warp_axis[k] +
+		    (sc->nv - 1) * sc->weft_axis[k]);
+	}
+	box_grow(lo, hi, p);
+	if ((axis = too_many_cells(lo, hi, cell, &cubes)) >= 0)
+		return fail(c, c->cell_line, "cell: the cloth spans %.3g cubes of %g m %s; "
+		    "expected at most %d along an axis and %.4g in all (the spatial hash's "
+		    "bound): a larger cell", cubes, cell, cells_where(axis), SCENE_MAX_CELLS,
+		    SCENE_MAX_BOX_CELLS);
+	for (o = 0; o < sc->nobstacles; o++) {
+		const struct obstacle *ob = &sc->obstacles[o];
+
+		if (ob->kind != OBSTACLE_MESH)
+			continue;
+		for (v = 0; v < ob->mesh.nverts; v++)
+			box_grow(lo, hi, ob->mesh.x + 3 * v);
+		if ((axis = too_many_cells(lo, hi, cell, &cubes)) >= 0)
+			return fail(c, ob->line, "with this mesh the cloth and the obstacles span "
+			    "%.3g cubes of %g m (%s) %s; expected at most %d along an axis and %.4g "
+			    "in all (the spatial hash's bound): a smaller scale, or a larger "
+			    "[collision] cell", cubes, cell, sc->col.cell > 0 ?
+			    "the [collision] cell" : "the cloth's spacing", cells_where(axis),
+			    SCENE_MAX_CELLS, SCENE_MAX_BOX_CELLS);
+	}
+	return 0;
+}
+
+static void
 set_defaults(struct scene *sc)
 {
 	sc->dt = 0;
@@ -799,9 +973,22 @@ default_name(const char *path)
 }
 
 int
-scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err)
+scene_section_repeats(const char *name)
 {
-	struct pctx c = { path, err, sc, NULL, 0, 0 };
+	size_t s;
+
+	for (s = 0; s < NSECTION_KINDS; s++)
+		if (strcmp(section_kinds[s].name, name) == 0)
+			return !section_kinds[s].once;
+	return -1;
+}
+
+/* text (with its overrides, if ov) into sc. */
+static int
+parse_text(struct scene *sc, const char *path, const char *text, const struct override_text *ov,
+    struct drape_err *err)
+{
+	struct pctx c = { path, err, sc, ov, NULL, 0, 0, 0 };
 	int seen[NSECTION_KINDS] = { 0 };
 	struct ini ini;
 	size_t i, k;
@@ -817,6 +1004,12 @@ scene_parse(struct scene *sc, const char *path, const char *text, struct drape_e
 	}
 	if (strlen(text) > MAX_SCENE_BYTES) {
 		err_set(err, "%s:1: expected a scene of at most %d bytes", path, MAX_SCENE_BYTES);
+		scene_free(sc);
+		return -1;
+	}
+	if (strncmp(text, "\xef\xbb\xbf", 3) == 0) {
+		err_set(err, "%s:1: expected plain text, found a UTF-8 byte order mark (EF BB BF) "
+		    "at the start: save the file as UTF-8 without BOM", path);
 		scene_free(sc);
 		return -1;
 	}
@@ -860,6 +1053,8 @@ scene_parse(struct scene *sc, const char *path, const char *text, struct drape_e
 	for (i = 0; i < c.nraw; i++)
 		if (resolve_selector(&c, &c.raw[i]) != 0)
 			goto out;
+	if (check_hash_extent(&c) != 0)
+		goto out;
 	rc = 0;
 out:
 	for (i = 0; i < c.nraw; i++)
@@ -872,7 +1067,37 @@ out:
 }
 
 int
+scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err)
+{
+	return parse_text(sc, path, text, NULL, err);
+}
+
+int
+scene_parse_set(struct scene *sc, const char *path, const char *text, const char *const *sets,
+    size_t nsets, struct drape_err *err)
+{
+	struct override_text ov;
+	int rc;
+
+	if (nsets == 0)
+		return parse_text(sc, path, text, NULL, err);
+	memset(sc, 0, sizeof *sc);
+	if (override_apply(&ov, path, text, sets, nsets, err) != 0)
+		return -1;
+	rc = parse_text(sc, path, ov.text, &ov, err);
+	override_free(&ov);
+	return rc;
+}
+
+int
 scene_load(struct scene *sc, const char *path, struct drape_err *err)
+{
+	return scene_load_set(sc, path, NULL, 0, err);
+}
+
+int
+scene_load_set(struct scene *sc, const char *path, const char *const *sets, size_t nsets,
+    struct drape_err *err)
 {
 	FILE *f;
 	char *buf = NULL;
@@ -908,14 +1133,50 @@ scene_load(struct scene *sc, const char *path, struct drape_err *err)
 		return -1;
 	}
 	fclose(f);
-	buf[len] = '\0';
-	if (memchr(buf, '\0', len) != NULL) {
-		err_set(err, "%s:1: expected a text file, found a NUL byte", path);
-		free(buf);
+	rc = scene_parse_bytes_set(sc, path, buf, len, sets, nsets, err);
+	free(buf);
+	return rc;
+}
+
+int
+scene_parse_bytes(struct scene *sc, const char *path, const void *data, size_t len,
+    struct drape_err *err)
+{
+	return scene_parse_bytes_set(sc, path, data, len, NULL, 0, err);
+}
+
+int
+scene_parse_bytes_set(struct scene *sc, const char *path, const void *data, size_t len,
+    const char *const *sets, size_t nsets, struct drape_err *err)
+{
+	const char *nul, *p;
+	char *text;
+	int line = 1, rc;
+
+	memset(sc, 0, sizeof *sc);
+	if (len >= REPLAY_MAGIC_LEN && memcmp(data, REPLAY_MAGIC, REPLAY_MAGIC_LEN) == 0) {
+		err_set(err, "%s:1: expected a scene, found a drape replay (drape replay, info, "
+		    "events, export, snapshot and run --resume read replays)", path);
 		return -1;
 	}
-	rc = scene_parse(sc, path, buf, err);
-	free(buf);
+	if (len > MAX_SCENE_BYTES) {
+		err_set(err, "%s:1: expected a scene of at most %d bytes", path, MAX_SCENE_BYTES);
+		return -1;
+	}
+	if ((nul = memchr(data, '\0', len)) != NULL) {
+		for (p = data; p < nul; p++)
+			line += *p == '\n';
+		err_set(err, "%s:%d: expected a text file, found a NUL byte", path, line);
+		return -1;
+	}
+	if ((text = malloc(len + 1)) == NULL) {
+		err_set(err, "%s: out of memory", path);
+		return -1;
+	}
+	memcpy(text, data, len);
+	text[len] = '\0';
+	rc = scene_parse_set(sc, path, text, sets, nsets, err);
+	free(text);
 	return rc;
 }
 

@@ -5,10 +5,12 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "broad.h"
 #include "err.h"
 #include "integrate.h"
 #include "narrow.h"
 #include "obstacle.h"
+#include "response.h"
 
 /* A block of grid nodes, i along the warp, j along the weft, inclusive. */
 struct node_block {
@@ -62,17 +64,6 @@ struct material {
 	double spring_damping;	/* s, dashpot c = spring_damping * k */
 };
 
-enum broad_mode { BROAD_SEED, BROAD_GRID, BROAD_BRUTE };
-enum narrow_mode { NARROW_SEED, NARROW_CCD };
-enum position_policy {
-	POSITION_KEEP,		/* the node stays where it was at step k (the chapter) */
-	POSITION_Q,		/* the node moves to Q */
-	POSITION_SLIDE,		/* step k's normal offset, this step's tangential motion */
-};
-
-extern const char *const broad_mode_name[], *const narrow_mode_name[],
-    *const position_policy_name[];
-
 /* [collision]: how contacts are found and answered. */
 struct collision_opts {
 	bool self;		/* cloth against cloth */
@@ -84,7 +75,15 @@ struct collision_opts {
 	double friction;	/* Coulomb mu, cloth on cloth */
 	double viscous;		/* 1/s, viscous friction on sliding */
 	enum position_policy position;
+	double memory;		/* bytes the collision stages may take; 0 for auto */
 };
+
+/* Bounds that keep a run finite and its numbers in range. */
+#define SCENE_MAX_STEPS 1e9	/* duration / dt */
+#define SCENE_MAX_FRAMES 1e9	/* duration * output_rate */
+#define SCENE_MAX_COORD 1e6	/* m: every length and coordinate, either way */
+#define SCENE_MAX_CELLS (1 << 24)	/* spatial hash cubes along an axis (scene.c) */
+#define SCENE_MAX_BOX_CELLS 9007199254740992.0	/* 2^53: and in its whole box */
 
 struct scene {
 	char *path;
@@ -93,6 +92,7 @@ struct scene {
 
 	double duration;
 	double dt;		/* 0 when auto */
+	int dt_line;		/* of dt, else of [simulation], for messages */
 	enum integrator_kind integrator;
 	double tolerance;	/* 0 when not given: the integrator's default */
 	double gravity[3];
@@ -119,9 +119,30 @@ struct scene {
 /* 1 if every block of the set lies on an nu x nv grid. */
 int node_set_fits(const struct node_set *set, int nu, int nv);
 
-/* Both return 0, or -1 with "FILE:LINE: what was expected" in err. */
+/* All return 0, or -1 with "FILE:LINE: what was expected" in err. A file,
+ * or bytes read from one, is refused if it is a replay, holds a NUL byte
+ * (at its line) or is over 16 MiB; text that begins with a byte order mark
+ * is refused with a hint. */
 int scene_load(struct scene *sc, const char *path, struct drape_err *err);
+int scene_parse_bytes(struct scene *sc, const char *path, const void *data, size_t len,
+    struct drape_err *err);
 int scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err);
+
+/* The steps a duration takes at dt, and the frames it holds at an output
+ * rate; a scene keeps them to SCENE_MAX_STEPS and SCENE_MAX_FRAMES, and so
+ * must the options that change duration or dt. */
+double scene_steps(double duration, double dt);
+double scene_frames(double duration, double output_rate);
+/* The same with the command line's overrides, "SECTION[#N].KEY=VALUE"
+ * each (override.h says how they apply): every value goes through the
+ * file's checks, an error on one is "--set SPEC: what was expected", and
+ * sc->text is the text that was read, overrides included. */
+int scene_load_set(struct scene *sc, const char *path, const char *const *sets, size_t nsets,
+    struct drape_err *err);
+int scene_parse_set(struct scene *sc, const char *path, const char *text, const char *const *sets,
+    size_t nsets, struct drape_err *err);
+int scene_parse_bytes_set(struct scene *sc, const char *path, const void *data, size_t len,
+    const char *const *sets, size_t nsets, struct drape_err *err);
 void scene_free(struct scene *sc);
 
 #endif

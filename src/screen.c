@@ -120,13 +120,10 @@ screen_collisions(struct text *t, const struct source_stats *ss)
 		text_add(t, "nothing to collide with");
 		return;
 	}
-	text_add(t, "%-12s %6ld %10ld", "vt pairs", a->broad.vt_pairs, b->broad.vt_pairs);
-	text_add(t, "%-12s %6ld %10ld", "ee pairs", a->broad.ee_pairs, b->broad.ee_pairs);
-	text_add(t, "%-12s %6ld %10ld", "narrow tests", a->narrow_tests, b->narrow_tests);
-	for (k = 0; k < CONTACT_NTYPES; k++)
-		text_add(t, "%-12s %6ld %10ld", contact_type_name[k], a->contacts[k], b->contacts[k]);
-	text_add(t, "%-12s %6ld %10ld", "corrections", a->corrections, b->corrections);
-	text_add(t, "%-12s %6d %10ld", "passes/frozen", a->passes, b->frozen);
+	/* the run's column of a STAT_MAX counter is its largest */
+	for (k = 0; k < STAT_COUNT; k++)
+		if (stat_field[k].panel)
+			text_add(t, "%-12s %6ld %10ld", stat_field[k].label, a->n[k], b->n[k]);
 }
 
 void
@@ -207,35 +204,14 @@ screen_node(struct text *t, const struct source_state *s, int node, const vec3 *
 }
 
 void
-screen_help(struct text *t, bool replay)
+screen_help(struct text *t, bool replay, const struct screen_key *keys, size_t n)
 {
+	size_t i;
+
 	text_add(t, "drape: keys%s", replay ? " (a replay)" : "");
 	text_add(t, " ");
-	if (replay) {
-		text_add(t, "  space         play / pause (+ / -: more / fewer frames a redraw)");
-		text_add(t, "  n . or Right  next frame; Left previous frame");
-		text_add(t, "  PgDn / PgUp   next / previous keyframe; Home / End first / last step");
-		text_add(t, "  g             go to a step (Enter, Esc cancels)");
-		text_add(t, "  h j k l, Up Down   rotate (yaw, pitch)");
-	} else {
-		text_add(t, "  space         run / pause");
-		text_add(t, "  n or .        one step (pauses)");
-		text_add(t, "  + / -         more / fewer steps per frame");
-		text_add(t, "  arrows, h j k l   rotate (yaw, pitch)");
-	}
-	text_add(t, "  H J K L       pan");
-	text_add(t, "  z / Z         zoom in / out");
-	text_add(t, "  v             next view: front, side, top, iso");
-	text_add(t, "  o             orthographic / perspective");
-	text_add(t, "  Tab           next panel");
-	text_add(t, "  [ / ]         previous / next node");
-	text_add(t, "  /             go to a node id (Enter, Esc cancels)");
-	text_add(t, "  e             %s to the selected node's next event", replay ? "play" : "run");
-	if (!replay)
-		text_add(t, "  r             start / stop recording (drape-DATE-TIME.drr here)");
-	text_add(t, "  Ctrl-L        redraw");
-	text_add(t, "  ? or F1       this help");
-	text_add(t, "  q             quit");
+	for (i = 0; i < n; i++)
+		text_add(t, "  %-13s %s", keys[i].names, keys[i].what);
 	text_add(t, " ");
 	text_add(t, "In the view: X the selected node, o a node in contact this step.");
 	if (replay)

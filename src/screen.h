@@ -63,7 +63,12 @@ void screen_hash(struct text *t, const struct source_stats *ss);
 void screen_node(struct text *t, const struct source_state *s, int node, const vec3 *f,
     const struct evlog *log);
 
-/* Every key, for the help screen: a replay's or a live run's. */
-void screen_help(struct text *t, bool replay);
+/* A line of the help screen: keys and what they do. */
+struct screen_key {
+	const char *names, *what;
+};
+
+/* The help screen of a replay's or a live run's keys (tui.c's table). */
+void screen_help(struct text *t, bool replay, const struct screen_key *keys, size_t n);
 
 #endif

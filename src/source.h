@@ -15,8 +15,10 @@
 #include "collide.h"
 #include "evlog.h"
 #include "forces.h"
+#include "network.h"
 #include "record.h"
 #include "scene.h"
+#include "stats.h"
 #include "vec3.h"
 
 struct source_state {
@@ -66,12 +68,14 @@ enum source_step {
 	SOURCE_STEPPED,
 	SOURCE_END,		/* nothing after this step */
 	SOURCE_FAILED,		/* a blow-up: the state stays at the last good step */
+	SOURCE_ERROR,		/* the run cannot go on (out of memory): the same */
+	SOURCE_STOPPED,		/* a signal gave the step up: the state is unchanged */
 };
 
 struct source {
 	void *ctx;
 	void (*state)(void *ctx, struct source_state *s);
-	/* why gets a message on SOURCE_FAILED */
+	/* why gets a message on SOURCE_FAILED and SOURCE_ERROR */
 	enum source_step (*step)(void *ctx, char *why, size_t len);
 	/* Nothing after the current state: the next step would be SOURCE_END. */
 	bool (*done)(void *ctx);
@@ -108,24 +112,26 @@ struct source_live {
 	char *rec_path;
 	char rec_error[600];	/* why the recording stopped by itself */
 	bool rec_error_new;
+	bool rec_failed;	/* a recording stopped by itself, at some point */
 };
 
 /* st must outlive src; source_live_free closes a recording and frees what
  * the source allocated. */
 void source_live(struct source *src, struct source_live *lv, struct stepper *st);
-
-/* The state a stepper holds, as both sources show it (v_note NULL). */
-void source_state_of(const struct stepper *st, struct source_state *s);
 void source_live_free(struct source_live *lv);
 
 /* A replay, its scene's network built from the recorded scene. The struct
- * must not move once open (the stepper points into it). */
+ * must not move once open (the network points into it). */
 struct replay_view;
 struct source_replay {
 	struct replay rp;
 	char *file;
 	struct scene sc;
-	struct stepper *st;	/* the network, and the state shown in its y */
+	bool built;		/* sc and net are */
+	struct network net;
+	double *y;		/* the state shown: positions (3n) then velocities */
+	long step;		/* its step, time and the step that followed */
+	double t, dt;
 	struct replay_view *view;	/* frames and keyframes, by step */
 	size_t nviews;
 	struct replay_steps *steps;	/* the intact steps chunks, by first step */

@@ -7,29 +7,27 @@
 #include "source.h"
 #include "stepper.h"
 
-void
-source_state_of(const struct stepper *st, struct source_state *s)
-{
-	s->sc = st->sc;
-	s->cl = &st->cl;
-	s->x = stepper_x(st);
-	s->v = stepper_v(st);
-	s->held = st->pr.held;
-	s->t = st->t;
-	s->t_end = st->t_end;
-	s->dt = st->dt;
-	s->step = st->step;
-	s->integrator = integrator_name(st->sc->integrator);
-	stepper_energy(st, &s->energy);
-	s->v_note = NULL;
-}
-
 static void
 live_state(void *ctx, struct source_state *s)
 {
 	struct source_live *lv = ctx;
+	const struct stepper *st = lv->st;
+	const struct network *net = stepper_network(st);
+	struct stepper_report r;
 
-	source_state_of(lv->st, s);
+	stepper_report(st, &r);
+	s->sc = stepper_scene(st);
+	s->cl = &net->cl;
+	s->x = stepper_x(st);
+	s->v = stepper_v(st);
+	s->held = net->pr.held;
+	s->t = r.t;
+	s->t_end = r.t_end;
+	s->dt = r.dt;
+	s->step = r.step;
+	s->integrator = integrator_name(s->sc->integrator);
+	stepper_energy(st, &s->energy);
+	s->v_note = NULL;
 }
 
 /* Closes the recording; 0, or -1 with a message. */
@@ -52,28 +50,28 @@ static enum source_step
 live_step(void *ctx, char *why, size_t len)
 {
 	struct source_live *lv = ctx;
-	struct blowup bl;
+	struct step_failure f;
 
 	if (stepper_done(lv->st))
 		return SOURCE_END;
-	if (stepper_step(lv->st, &bl) != 0) {
-		if (bl.node >= 0)
-			snprintf(why, len, "blow-up at step %ld (t = %.6g s): node %d (i %d, j %d): %s",
-			    bl.step, bl.t, bl.node, bl.i, bl.j, bl.why);
-		else
-			snprintf(why, len, "blow-up at step %ld (t = %.6g s): %s", bl.step, bl.t,
-			    bl.why);
-		return SOURCE_FAILED;
+	if (stepper_step(lv->st, &f) != STEP_OK) {
+		if (f.status == STEP_STOPPED)
+			return SOURCE_STOPPED;
+		step_failure_format(&f, why, len);
+		return f.status == STEP_BLOWUP ? SOURCE_FAILED : SOURCE_ERROR;
 	}
 	if (lv->recording) {
 		struct drape_err err;
 
 		if (record_step(&lv->rec, lv->st, &err) != 0) {
 			struct drape_err ignored;
+			struct stepper_report r;
 
+			stepper_report(lv->st, &r);
 			snprintf(lv->rec_error, sizeof lv->rec_error, "recording stopped at step %ld: %s",
-			    lv->st->step, err.msg);
+			    r.step, err.msg);
 			lv->rec_error_new = true;
+			lv->rec_failed = true;
 			record_stop(lv, &ignored);
 		}
 	}
@@ -92,24 +90,26 @@ static const struct contact_event *
 live_events(void *ctx, size_t *n)
 {
 	struct source_live *lv = ctx;
+	struct stepper_report r;
 
-	*n = lv->st->col.nev;
-	return lv->st->col.ev;
+	stepper_report(lv->st, &r);
+	*n = r.nev;
+	return r.ev;
 }
 
 static void
 live_stats(void *ctx, struct source_stats *s)
 {
 	struct source_live *lv = ctx;
-	const struct stepper *st = lv->st;
+	struct stepper_report r;
 
-	s->active = st->col.active;
-	s->has_hash = st->col.active && st->col.pairs &&
-	    (st->sc->col.broad == BROAD_SEED || st->sc->col.broad == BROAD_GRID);
-	s->broad = broad_mode_name[st->sc->col.broad];
-	s->step = &st->col.st;
-	s->total = &st->col.total;
-	s->hash = &st->col.st.broad.hash;
+	stepper_report(lv->st, &r);
+	s->active = r.collisions;
+	s->has_hash = r.uses_hash;
+	s->broad = broad_mode_name[stepper_scene(lv->st)->col.broad];
+	s->step = r.last;
+	s->total = r.total;
+	s->hash = &r.last->hash;
 }
 
 /* One force evaluation for all nodes, kept until the next step. */
@@ -117,18 +117,20 @@ static bool
 live_force(void *ctx, int node, vec3 *f)
 {
 	struct source_live *lv = ctx;
-	struct stepper *st = lv->st;
+	const struct network *net = stepper_network(lv->st);
+	struct stepper_report r;
 
-	if (node < 0 || node >= st->cl.n)
+	if (node < 0 || node >= net->cl.n)
 		return false;
 	if (lv->accel == NULL &&
-	    (lv->accel = malloc(3 * (size_t)st->cl.n * sizeof *lv->accel)) == NULL)
+	    (lv->accel = malloc(3 * (size_t)net->cl.n * sizeof *lv->accel)) == NULL)
 		return false;
-	if (lv->accel_step != st->step) {
-		forces_accel(&st->fo, st->t, stepper_x(st), stepper_v(st), lv->accel);
-		lv->accel_step = st->step;
+	stepper_report(lv->st, &r);
+	if (lv->accel_step != r.step) {
+		forces_accel(&net->fo, r.t, stepper_x(lv->st), stepper_v(lv->st), lv->accel);
+		lv->accel_step = r.step;
 	}
-	*f = v3_scale(v3_load(lv->accel + 3 * node), st->cl.mass[node]);
+	*f = v3_scale(v3_load(lv->accel + 3 * node), net->cl.mass[node]);
 	return true;
 }
 

@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "replay_run.h"
 #include "source.h"
-#include "stepper.h"
 
 /* Steps beyond this are a hostile file's, not a run's: left out, so that
  * the cursor's arithmetic never overflows. */
@@ -147,7 +147,7 @@ static int
 load_view(struct source_replay *sr, size_t i, double *x, double *v)
 {
 	const struct replay_view *vw = &sr->view[i];
-	size_t n3 = 3 * (size_t)sr->st->cl.n, j;
+	size_t n3 = 3 * (size_t)sr->net.cl.n, j;
 	struct drape_err ignored;
 
 	if (vw->key) {
@@ -199,24 +199,6 @@ find_step(const struct source_replay *sr, long step, const struct contact_event 
 	return NULL;
 }
 
-static void
-stats_add(struct collide_stats *total, const struct collide_stats *s)
-{
-	int k;
-
-	total->narrow_tests += s->narrow_tests;
-	for (k = 0; k < CONTACT_NTYPES; k++)
-		total->contacts[k] += s->contacts[k];
-	total->corrections += s->corrections;
-	total->frozen += s->frozen;
-	total->unresolved += s->unresolved;
-	total->broad.node_pairs += s->broad.node_pairs;
-	total->broad.vt_pairs += s->broad.vt_pairs;
-	total->broad.ee_pairs += s->broad.ee_pairs;
-	if (s->passes > total->passes)
-		total->passes = s->passes;
-}
-
 /* The last view at or before step (the first view when none is). */
 static size_t
 view_at(const struct source_replay *sr, long step)
@@ -238,8 +220,7 @@ view_at(const struct source_replay *sr, long step)
 static int
 set_cursor(struct source_replay *sr, long step)
 {
-	struct stepper *st = sr->st;
-	size_t n3 = 3 * (size_t)st->cl.n, i, j;
+	size_t n3 = 3 * (size_t)sr->net.cl.n, i, j;
 	double *y;
 	const struct replay_view *vw;
 
@@ -267,16 +248,16 @@ set_cursor(struct source_replay *sr, long step)
 				y[n3 + j] = (y[j] - sr->prev[j]) / dt;
 		}
 	}
-	memcpy(st->y, y, 2 * n3 * sizeof *y);
+	memcpy(sr->y, y, 2 * n3 * sizeof *y);
 	free(y);
 	sr->cursor = step;
 	sr->cur = i;
 	sr->exact = vw->key;
 	sr->rec = find_step(sr, step - 1, &sr->ev);
 	sr->nev = sr->rec != NULL ? (size_t)sr->rec->nev : 0;
-	st->step = step;
-	st->t = sr->rec != NULL ? sr->rec->t : vw->t;
-	st->dt = sr->rec != NULL ? sr->rec->dt : sr->rp.meta.dt_set;
+	sr->step = step;
+	sr->t = sr->rec != NULL ? sr->rec->t : vw->t;
+	sr->dt = sr->rec != NULL ? sr->rec->dt : sr->rp.meta.dt_set;
 	memset(&sr->total, 0, sizeof sr->total);
 	for (i = 0; i < sr->nsteps; i++)
 		for (j = 0; j < sr->steps[i].count && sr->steps[i].s[j].step < step; j++)
@@ -291,9 +272,19 @@ static void
 replay_state(void *ctx, struct source_state *s)
 {
 	struct source_replay *sr = ctx;
+	size_t n3 = 3 * (size_t)sr->net.cl.n;
 
-	/* the replay's stepper holds the state of the frame shown */
-	source_state_of(sr->st, s);
+	s->sc = &sr->sc;
+	s->cl = &sr->net.cl;
+	s->x = sr->y;
+	s->v = sr->y + n3;
+	s->held = sr->net.pr.held;
+	s->t = sr->t;
+	s->t_end = sr->sc.duration;
+	s->dt = sr->dt;
+	s->step = sr->step;
+	s->integrator = integrator_name(sr->sc.integrator);
+	forces_energy(&sr->net.fo, sr->t, s->x, s->v, &s->energy);
 	s->v_note = sr->exact ? NULL : "v: frame differences";
 }
 
@@ -388,15 +379,13 @@ static void
 replay_stats(void *ctx, struct source_stats *s)
 {
 	struct source_replay *sr = ctx;
-	const struct stepper *st = sr->st;
 
-	s->active = st->col.active;
-	s->has_hash = st->col.active && st->col.pairs &&
-	    (st->sc->col.broad == BROAD_SEED || st->sc->col.broad == BROAD_GRID);
-	s->broad = broad_mode_name[st->sc->col.broad];
+	s->active = collide_active(&sr->sc);
+	s->has_hash = collide_uses_hash(&sr->sc);
+	s->broad = broad_mode_name[sr->sc.col.broad];
 	s->step = sr->rec != NULL ? &sr->rec->col : &sr->none;
 	s->total = &sr->total;
-	s->hash = &s->step->broad.hash;
+	s->hash = &s->step->hash;
 }
 
 /* Known at a keyframe only, whose velocities are exact. */
@@ -404,12 +393,13 @@ static bool
 replay_force(void *ctx, int node, vec3 *f)
 {
 	struct source_replay *sr = ctx;
-	struct stepper *st = sr->st;
+	const struct cloth *cl = &sr->net.cl;
 
-	if (!sr->exact || node < 0 || node >= st->cl.n)
+	if (!sr->exact || node < 0 || node >= cl->n)
 		return false;
-	forces_accel(&st->fo, sr->view[sr->cur].t, stepper_x(st), stepper_v(st), sr->accel);
-	*f = v3_scale(v3_load(sr->accel + 3 * node), st->cl.mass[node]);
+	forces_accel(&sr->net.fo, sr->view[sr->cur].t, sr->y, sr->y + 3 * (size_t)cl->n,
+	    sr->accel);
+	*f = v3_scale(v3_load(sr->accel + 3 * node), cl->mass[node]);
 	return true;
 }
 
@@ -446,7 +436,6 @@ int
 source_replay_open(struct source *src, struct source_replay *sr, const char *path,
     struct drape_err *err)
 {
-	const struct replay_meta *m;
 	size_t n3, i;
 
 	memset(sr, 0, sizeof *sr);
@@ -461,35 +450,22 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 		sr->file = NULL;
 		return -1;
 	}
-	m = &sr->rp.meta;
-	if (scene_parse(&sr->sc, m->path, m->text, err) != 0)
-		goto fail_replay;
-	sr->sc.duration = m->duration;
-	sr->sc.dt = m->dt;
-	if (m->integrator < 0 || m->integrator >= INTEG_COUNT) {
-		err_set(err, "%s: unknown integrator %d", path, m->integrator);
-		goto fail_scene;
+	if (replay_scene(&sr->rp, path, 0, &sr->sc, err) != 0)
+		goto fail;
+	if (replay_network(&sr->rp, path, &sr->sc, &sr->net, err) != 0) {
+		scene_free(&sr->sc);
+		goto fail;
 	}
-	sr->sc.integrator = (enum integrator_kind)m->integrator;
-	if ((sr->st = malloc(sizeof *sr->st)) == NULL) {
-		err_set(err, "%s: out of memory", path);
-		goto fail_scene;
-	}
-	if (stepper_init(sr->st, &sr->sc, err) != 0)
-		goto fail_stepper;
-	if ((uint32_t)sr->st->cl.n != m->nodes) {
-		err_set(err, "%s: its scene now gives %d nodes, expected the recorded %u", path,
-		    sr->st->cl.n, m->nodes);
-		goto fail_init;
-	}
-	n3 = 3 * (size_t)sr->st->cl.n;
-	if ((sr->prev = malloc(n3 * sizeof *sr->prev)) == NULL ||
+	sr->built = true;
+	n3 = 3 * (size_t)sr->net.cl.n;
+	if ((sr->y = malloc(2 * n3 * sizeof *sr->y)) == NULL ||
+	    (sr->prev = malloc(n3 * sizeof *sr->prev)) == NULL ||
 	    (sr->accel = malloc(n3 * sizeof *sr->accel)) == NULL) {
 		err_set(err, "%s: out of memory", path);
-		goto fail_init;
+		goto fail;
 	}
 	if (index_chunks(sr, err) != 0)
-		goto fail_init;
+		goto fail;
 	sr->first = sr->view[0].step;
 	sr->last = sr->view[sr->nviews - 1].step;
 	for (i = 0; i < sr->nsteps; i++) {
@@ -500,7 +476,7 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 	}
 	if (set_cursor(sr, sr->first) != 0) {
 		err_set(err, "%s: out of memory", path);
-		goto fail_init;
+		goto fail;
 	}
 	src->ctx = sr;
 	src->state = replay_state;
@@ -513,14 +489,7 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 	src->position = replay_position;
 	src->history = replay_history;
 	return 0;
-fail_init:
-	stepper_free(sr->st);
-fail_stepper:
-	free(sr->st);
-	sr->st = NULL;
-fail_scene:
-	scene_free(&sr->sc);
-fail_replay:
+fail:
 	source_replay_close(sr);
 	return -1;
 }
@@ -530,11 +499,11 @@ source_replay_close(struct source_replay *sr)
 {
 	size_t i;
 
-	if (sr->st != NULL) {
-		stepper_free(sr->st);
-		free(sr->st);
+	if (sr->built) {
+		network_free(&sr->net);
 		scene_free(&sr->sc);
 	}
+	free(sr->y);
 	for (i = 0; i < sr->nsteps; i++)
 		replay_steps_free(&sr->steps[i]);
 	free(sr->steps);

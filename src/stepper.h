@@ -1,65 +1,136 @@
-/* stepper.h: a run in progress. The stepper owns the order of a step
- * (the chapter's §4): integrate to the predicted state k+1 from the
- * consistent state k, put held nodes back on their prescribed motion,
- * correct the nodes that collide (self-contact, then obstacles), check for
- * a blow-up, commit. */
+/* stepper.h: a run in progress, and the only way into one. The stepper
+ * owns the order of a step (the chapter's §4): integrate to the predicted
+ * state k+1 from the consistent state k, put held nodes back on their
+ * prescribed motion, correct the nodes that collide (self-contact, then
+ * obstacles), check for a blow-up, commit.
+ *
+ * Its state is private (stepper.c): a run is made from a checked scene,
+ * stepped, read through a report and the state's positions and
+ * velocities, saved and restored; recording, the TUI's sources, --resume
+ * and the commands use nothing else. */
 #ifndef DRAPE_STEPPER_H
 #define DRAPE_STEPPER_H
 
+#include <signal.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
-#include "cloth.h"
 #include "collide.h"
 #include "err.h"
 #include "forces.h"
-#include "implicit.h"
 #include "integrate.h"
-#include "prescribed.h"
+#include "network.h"
 #include "scene.h"
+#include "stats.h"
 
-struct blowup {
-	long step;		/* the step that failed */
-	double t;		/* time at its start */
-	int node;		/* first bad node, or -1 */
-	int i, j;		/* its grid position */
-	char why[160];
+struct stepper;
+
+/* How a step ended. A blow-up is the simulation's: it diverged (exit 3).
+ * An error is not: the run cannot go on for want of memory or because the
+ * scene's extent does not fit the broad phase (exit 1). */
+enum step_status {
+	STEP_OK,
+	STEP_BLOWUP,
+	STEP_ERROR,
+	STEP_STOPPED,		/* given up for stepper_set_stop's flag: no failure */
 };
 
-struct stepper {
-	const struct scene *sc;
-	struct cloth cl;
-	struct prescribed pr;
-	struct forces fo;
-	struct integrator in;	/* the explicit methods */
-	struct implicit im;	/* implicit Euler */
-	struct collide col;
-	double *y, *y_next;	/* positions (3n) then velocities (3n) */
+struct step_failure {
+	enum step_status status;
+	long step;		/* the step that failed */
+	double t;		/* time at its start */
+	int node;		/* a blow-up's first bad node, or -1 */
+	int i, j;		/* its grid position */
+	char why[400];
+};
+
+/* The one wording of a failure: "blow-up at step S (t = T s): node N (i I,
+ * j J): WHY", or "step S (t = T s): WHY" for an error. */
+void step_failure_format(const struct step_failure *f, char *buf, size_t len);
+
+/* Builds the network and the initial state from a checked scene; the scene
+ * must outlive the stepper. NULL with a message in err (also when the
+ * duration would take more than SCENE_MAX_STEPS steps). */
+struct stepper *stepper_new(const struct scene *sc, struct drape_err *err);
+
+/* The same, telling pg's stage (when not NULL) the name of each stage of
+ * the setup as it begins ("the network", "the integrator", "the collision
+ * geometry"): for a command that shows progress. */
+struct stepper_progress {
+	void (*stage)(void *ctx, const char *what);
+	void *ctx;
+};
+struct stepper *stepper_new_progress(const struct scene *sc, const struct stepper_progress *pg,
+    struct drape_err *err);
+void stepper_free(struct stepper *st);	/* NULL is fine */
+
+/* Polls *flag in the long loops of a step (the broad phase, the ccd passes,
+ * the implicit solve): once it is set, the step is given up (STEP_STOPPED)
+ * with the state at the last good step, so that a signal is honoured
+ * within a step. NULL: never. */
+void stepper_set_stop(struct stepper *st, const volatile sig_atomic_t *flag);
+
+/* One step. On a failure (described in *f) the state stays at the last
+ * good step. */
+enum step_status stepper_step(struct stepper *st, struct step_failure *f);
+bool stepper_done(const struct stepper *st);
+
+const struct scene *stepper_scene(const struct stepper *st);
+const struct network *stepper_network(const struct stepper *st);
+const double *stepper_x(const struct stepper *st);	/* 3n positions */
+const double *stepper_v(const struct stepper *st);	/* 3n velocities */
+void stepper_energy(const struct stepper *st, struct energy *e);
+/* FNV-1a over the state's bytes and the time: equal hashes, equal runs. */
+uint64_t stepper_hash(const struct stepper *st);
+/* The same of a state y (6 * nodes doubles) at time t. */
+uint64_t stepper_state_hash(const double *y, size_t nodes, double t);
+
+/* The geometry the collision stages see (cloth nodes, then obstacle mesh
+ * vertices), for tests and audits. */
+const struct geom *stepper_geom(const struct stepper *st);
+
+/* What a run has done, as of its last step (read-only; the pointers are
+ * valid until the next step). */
+struct stepper_report {
+	long step;
 	double t, t_end;
 	double dt;		/* the step to try next */
 	double dt_set;		/* the scene's (or auto) step: DOPRI5's largest */
 	bool dt_auto;
-	double omega;		/* bound on the highest angular frequency */
-	double v_limit;		/* a node faster than this has blown up */
+	double omega;		/* the bound on the highest angular frequency */
+	long nfev, rejected;	/* explicit methods: force evaluations, rejected steps */
+	long solves, iters, unconverged;	/* implicit Euler: solves, CG iterations */
+	long substeps;		/* fast: its substeps */
+	bool collisions;	/* anything to collide with */
+	bool uses_hash;		/* the broad phase fills a spatial hash */
+	double cell;		/* L_ce */
+	const struct collide_stats *last, *total;	/* the last step's, and the run's */
+	const struct contact_event *ev;	/* the last step's events */
+	size_t nev;
+};
+void stepper_report(const struct stepper *st, struct stepper_report *r);
+
+/* A saved state, as a keyframe holds it, and the run it is a state of (a
+ * replay's header holds those). */
+struct stepper_state {
 	long step;
+	double t, dt;		/* dt: the step to try next */
+	const double *y;	/* positions (3n) then velocities (3n) */
+	uint64_t hash;		/* stepper_hash of it */
+	size_t nodes;		/* the run's node count (n) */
+	double dt_set;		/* and its scene's (or auto) step */
 };
 
-/* Builds the network and the initial state from a checked scene; the scene
- * must outlive the stepper. Returns 0, or -1 with a message in err. */
-int stepper_init(struct stepper *st, const struct scene *sc, struct drape_err *err);
-void stepper_free(struct stepper *st);
+/* s points into st until its next step. */
+void stepper_save(const struct stepper *st, struct stepper_state *s);
+/* Puts st in state s; st is unchanged by a refusal. 0; -1 with a message
+ * when s is not a state of this run ("its scene now gives N nodes and dt
+ * D, expected the recorded N' and D'": the node count or dt_set differ);
+ * -2 with a message when s is not the state its hash was taken of. */
+int stepper_restore(struct stepper *st, const struct stepper_state *s, struct drape_err *err);
 
-/* One step. Returns 0, or 1 on a blow-up (described in *bl); the state is
- * then left at the last good step. */
-int stepper_step(struct stepper *st, struct blowup *bl);
-bool stepper_done(const struct stepper *st);
-
-static inline double *stepper_x(const struct stepper *st) { return st->y; }
-static inline double *stepper_v(const struct stepper *st) { return st->y + 3 * st->cl.n; }
-
-void stepper_energy(const struct stepper *st, struct energy *e);
-/* FNV-1a over the state's bytes and the time: equal hashes, equal runs. */
-uint64_t stepper_hash(const struct stepper *st);
+#define STEPPER_FAST_DT 0.01	/* s: dt = auto for the fast path */
 
 /* The step `dt = auto` picks for a scene (drape-scene(5) says how);
  * crossing is the time to cross a spacing at the fastest expected speed. */

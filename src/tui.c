@@ -1,7 +1,9 @@
 /* tui.c: the ncurses front end: one werase and one doupdate per frame,
- * redraws capped by the delay, ASCII only, colour optional. On a replay
+ * redraws capped by the delay, ASCII (or braille), colour optional. On a replay
  * (a source that seeks) the arrows, PgUp/PgDn, Home/End and g move in it;
- * on a live run r records. */
+ * on a live run r records. c cycles the colouring (colouring.h) where
+ * there is colour, u the glyphs: ASCII, or in a UTF-8 locale braille and
+ * half blocks (glyphs.h). */
 #include <curses.h>
 #include <math.h>
 #include <signal.h>
@@ -12,7 +14,10 @@
 #include <time.h>
 
 #include "clock.h"
+#include "colouring.h"
 #include "evlog.h"
+#include "glyphs.h"
+#include "paint.h"
 #include "raster.h"
 #include "screen.h"
 #include "tui.h"
@@ -35,7 +40,17 @@ on_signal(int signo)
 	quit_signal = signo;
 }
 
+const volatile sig_atomic_t *
+tui_stop_flag(void)
+{
+	return &quit_signal;
+}
+
 enum colour_pair { PAIR_CLOTH = 1, PAIR_SOLID, PAIR_FLOOR, PAIR_CONTACT, PAIR_SELECTED };
+/* The colouring's palette: pairs from here, made when first used (the
+ * 6x6x6 cube of a 256-colour terminal, else the 8 basic colours). */
+#define PAIR_PALETTE 16
+#define PALETTE_SIZE 216
 
 struct tui {
 	struct source *src;
@@ -57,6 +72,16 @@ struct tui {
 	char input[16];
 	char msg[300];
 	struct tui_result *res;
+	/* colouring and glyphs */
+	enum colouring colouring;
+	double range;		/* of its scale: the largest seen since chosen */
+	double *field;		/* n: the colouring's value per node */
+	enum glyphs glyphs;	/* ASCII, braille or blocks */
+	bool utf8;		/* the locale is */
+	struct glyphs_grid g;	/* the Unicode view */
+	struct render cells;	/* the ASCII view's colours, a pixel a cell */
+	bool palette256;
+	unsigned char pair_made[PALETTE_SIZE];
 };
 
 static void
@@ -98,13 +123,14 @@ step_once(struct tui *ui)
 {
 	size_t nev;
 	const struct contact_event *ev;
+	enum source_step r;
 
 	if (ui->ended || ui->res->blown_up) {
 		say(ui, "%s", ui->ended ? (ui->replay ? "end of the replay" : "end of the run") :
 		    ui->res->why);
 		return false;
 	}
-	switch (ui->src->step(ui->src->ctx, ui->res->why, sizeof ui->res->why)) {
+	switch ((r = ui->src->step(ui->src->ctx, ui->res->why, sizeof ui->res->why))) {
 	case SOURCE_STEPPED:
 		if (ui->replay) {	/* a frame on: every step in between */
 			rebuild_log(ui);
@@ -123,8 +149,12 @@ step_once(struct tui *ui)
 		ui->running = false;
 		say(ui, "%s", ui->replay ? "end of the replay" : "end of the run");
 		return false;
+	case SOURCE_STOPPED:
+		return false;	/* the loop sees the signal */
 	case SOURCE_FAILED:
+	case SOURCE_ERROR:
 		ui->res->blown_up = true;
+		ui->res->run_error = r == SOURCE_ERROR;
 		ui->running = false;
 		say(ui, "%s", ui->res->why);
 		return false;
@@ -239,6 +269,40 @@ toggle_recording(struct tui *ui)
 		say(ui, "recording into %s (r stops)", name);
 }
 
+/* c: the next colouring, where there is colour. */
+static void
+next_colouring(struct tui *ui)
+{
+	if (!ui->colour) {
+		say(ui, "colouring needs a colour terminal: the view shows the shading only");
+		return;
+	}
+	ui->colouring = (enum colouring)((ui->colouring + 1) % COLOUR_COUNT);
+	ui->range = 0;
+	if (ui->colouring == COLOUR_SHADE)
+		say(ui, "colour: by what it is (cloth, solid, floor, contact)");
+	else if (ui->colouring == COLOUR_CONTACT)
+		say(ui, "colour: contact (orange an obstacle, red the cloth)");
+	else
+		say(ui, "colour: %s, %s (blue to red; the scale grows with the run)",
+		    colouring_title[ui->colouring], colouring_is_signed(ui->colouring) ?
+		    "from compressed to stretched" : "from none to the largest");
+}
+
+/* u: ASCII, braille, half blocks; Unicode only in a UTF-8 locale. */
+static void
+next_glyphs(struct tui *ui)
+{
+	if (!ui->utf8) {
+		say(ui, "braille and half blocks need a UTF-8 locale (LANG, LC_ALL): ASCII only");
+		return;
+	}
+	ui->glyphs = ui->glyphs == GLYPHS_ASCII ? GLYPHS_BRAILLE :
+	    ui->glyphs == GLYPHS_BRAILLE ? GLYPHS_BLOCKS : GLYPHS_ASCII;
+	say(ui, "view: %s", ui->glyphs == GLYPHS_ASCII ? "ASCII" :
+	    ui->glyphs == GLYPHS_BRAILLE ? "braille, 2 x 4 dots a cell" : "half blocks");
+}
+
 static void
 prompt_key(struct tui *ui, int ch)
 {
@@ -277,10 +341,240 @@ prompt_key(struct tui *ui, int ch)
 	}
 }
 
+/* ---- keys: one table, read by the dispatch and by the help screen ---- */
+
+enum key_when { KEYS_BOTH, KEYS_LIVE, KEYS_REPLAY };
+
+struct binding {
+	enum key_when when;
+	int keys[9];		/* the codes, 0-terminated */
+	const char *names;	/* as the help shows them; NULL: no line of its own */
+	const char *what;
+	void (*act)(struct tui *ui, int ch);
+};
+
+static void act_quit(struct tui *ui, int ch) { (void)ch; ui->quit = true; }
+static void act_help(struct tui *ui, int ch) { (void)ch; ui->help = true; }
+static void act_redraw(struct tui *ui, int ch) { (void)ui; (void)ch; clearok(curscr, TRUE); }
+static void act_event(struct tui *ui, int ch) { (void)ch; seek_event(ui); }
+static void act_record(struct tui *ui, int ch) { (void)ch; toggle_recording(ui); }
+
+static void
+act_no_record(struct tui *ui, int ch)
+{
+	(void)ch;
+	say(ui, "a replay does not record (drape run --record does)");
+}
+
+static void
+act_run(struct tui *ui, int ch)
+{
+	struct source_state s;
+
+	(void)ch;
+	ui->src->state(ui->src->ctx, &s);
+	ui->running = !ui->running && !ui->ended && !ui->res->blown_up;
+	if (ui->replay && ui->ended)
+		say(ui, "end of the replay (Home goes back to the first step)");
+	ui->mark_wall = clock_seconds();
+	ui->mark_t = s.t;
+}
+
+static void
+act_step(struct tui *ui, int ch)
+{
+	(void)ch;
+	ui->running = false;
+	step_once(ui);
+}
+
+static void
+act_speed(struct tui *ui, int ch)
+{
+	if (ch == '-' && ui->spf > 1)
+		ui->spf /= 2;
+	else if (ch != '-' && ui->spf < STEPS_PER_FRAME_MAX)
+		ui->spf *= 2;
+	say(ui, "at most %ld %s a frame", ui->spf, ui->replay ? "replay frames" : "steps");
+}
+
+static void
+act_rotate(struct tui *ui, int ch)
+{
+	if (ch == KEY_LEFT || ch == 'h')
+		ui->cam.yaw -= ROTATE_STEP;
+	else if (ch == KEY_RIGHT || ch == 'l')
+		ui->cam.yaw += ROTATE_STEP;
+	else if (ch == KEY_UP || ch == 'k')
+		ui->cam.pitch = fmin(ui->cam.pitch + ROTATE_STEP, V3_PI / 2);
+	else
+		ui->cam.pitch = fmax(ui->cam.pitch - ROTATE_STEP, -V3_PI / 2);
+}
+
+static void
+act_pan(struct tui *ui, int ch)
+{
+	double d = PAN_STEP * ui->cam.radius / ui->cam.zoom;
+
+	if (ch == 'H')
+		ui->cam.pan_x += d;
+	else if (ch == 'L')
+		ui->cam.pan_x -= d;
+	else if (ch == 'K')
+		ui->cam.pan_y -= d;
+	else
+		ui->cam.pan_y += d;
+}
+
+static void
+act_zoom(struct tui *ui, int ch)
+{
+	if (ch == 'z')
+		ui->cam.zoom *= ZOOM_STEP;
+	else
+		ui->cam.zoom /= ZOOM_STEP;
+}
+
+static void
+act_view(struct tui *ui, int ch)
+{
+	(void)ch;
+	ui->preset = (ui->preset + 1) % VIEW_NPRESETS;
+	reset_camera(ui);
+	say(ui, "view: %s", view_preset_name[ui->preset]);
+}
+
+static void
+act_perspective(struct tui *ui, int ch)
+{
+	(void)ch;
+	ui->cam.perspective = !ui->cam.perspective;
+	say(ui, "%s", ui->cam.perspective ? "perspective" : "orthographic");
+}
+
+static void
+act_look(struct tui *ui, int ch)
+{
+	if (ch == 'c')
+		next_colouring(ui);
+	else
+		next_glyphs(ui);
+}
+
+static void
+act_panel(struct tui *ui, int ch)
+{
+	(void)ch;
+	ui->focus = (enum panel)((ui->focus + 1) % PANEL_COUNT);
+}
+
+static void
+act_node(struct tui *ui, int ch)
+{
+	struct source_state s;
+	int n;
+
+	ui->src->state(ui->src->ctx, &s);
+	n = s.cl->n;
+	ui->selected = ch == '[' ? (ui->selected + n - 1) % n : (ui->selected + 1) % n;
+}
+
+static void
+act_prompt(struct tui *ui, int ch)
+{
+	ui->prompt = true;
+	ui->prompt_step = ch == 'g';	/* a step (replays), else a node */
+	ui->input[0] = '\0';
+}
+
+static void
+act_frame(struct tui *ui, int ch)
+{
+	if (ch == KEY_LEFT)
+		seek(ui, SOURCE_FRAME_PREV, 0, "at the first frame");
+	else
+		act_step(ui, ch);	/* one frame, or the end */
+}
+
+static void
+act_keyframe(struct tui *ui, int ch)
+{
+	if (ch == KEY_NPAGE)
+		seek(ui, SOURCE_KEY_NEXT, 0, "no keyframe after this step");
+	else
+		seek(ui, SOURCE_KEY_PREV, 0, "no keyframe before this step");
+}
+
+static void
+act_ends(struct tui *ui, int ch)
+{
+	if (ch == KEY_HOME)
+		seek(ui, SOURCE_FIRST, 0, "at the first step");
+	else
+		seek(ui, SOURCE_LAST, 0, "at the last step");
+}
+
+/* The first binding of the source's kind that holds a key wins, so a
+ * replay's arrows move in time before they rotate. */
+static const struct binding bindings[] = {
+	{ KEYS_LIVE, { ' ' }, "space", "run / pause", act_run },
+	{ KEYS_REPLAY, { ' ' }, "space", "play / pause (+ / -: more / fewer frames a redraw)",
+	    act_run },
+	{ KEYS_LIVE, { 'n', '.' }, "n or .", "one step (pauses)", act_step },
+	{ KEYS_REPLAY, { 'n', '.', KEY_RIGHT, KEY_LEFT }, "n . or Right",
+	    "next frame; Left previous frame", act_frame },
+	{ KEYS_REPLAY, { KEY_NPAGE, KEY_PPAGE }, "PgDn / PgUp",
+	    "next / previous keyframe; Home / End first / last step", act_keyframe },
+	{ KEYS_REPLAY, { KEY_HOME, KEY_END }, NULL, NULL, act_ends },
+	{ KEYS_REPLAY, { 'g' }, "g", "go to a step (Enter, Esc cancels)", act_prompt },
+	{ KEYS_LIVE, { '+', '=', '-' }, "+ / -", "more / fewer steps per frame", act_speed },
+	{ KEYS_REPLAY, { '+', '=', '-' }, NULL, NULL, act_speed },
+	{ KEYS_LIVE, { KEY_LEFT, KEY_RIGHT, KEY_UP, KEY_DOWN, 'h', 'j', 'k', 'l' },
+	    "arrows, h j k l", "rotate (yaw, pitch)", act_rotate },
+	{ KEYS_REPLAY, { KEY_UP, KEY_DOWN, 'h', 'j', 'k', 'l' }, "h j k l, Up Down",
+	    "rotate (yaw, pitch)", act_rotate },
+	{ KEYS_BOTH, { 'H', 'J', 'K', 'L' }, "H J K L", "pan", act_pan },
+	{ KEYS_BOTH, { 'z', 'Z' }, "z / Z", "zoom in / out", act_zoom },
+	{ KEYS_BOTH, { 'v' }, "v", "next view: front, side, top, iso", act_view },
+	{ KEYS_BOTH, { 'o' }, "o", "orthographic / perspective", act_perspective },
+	{ KEYS_BOTH, { 'c', 'u' }, "c  u", "next colouring (strain, contact) / glyphs (braille, blocks)",
+	    act_look },
+	{ KEYS_BOTH, { '\t' }, "Tab", "next panel", act_panel },
+	{ KEYS_BOTH, { '[', ']' }, "[ / ]", "previous / next node", act_node },
+	{ KEYS_BOTH, { '/' }, "/", "go to a node id (Enter, Esc cancels)", act_prompt },
+	{ KEYS_LIVE, { 'e' }, "e", "run to the selected node's next event", act_event },
+	{ KEYS_REPLAY, { 'e' }, "e", "play to the selected node's next event", act_event },
+	{ KEYS_LIVE, { 'r' }, "r", "start / stop recording (drape-DATE-TIME.drr here)",
+	    act_record },
+	{ KEYS_REPLAY, { 'r' }, NULL, NULL, act_no_record },
+	{ KEYS_BOTH, { 12 }, "Ctrl-L", "redraw", act_redraw },
+	{ KEYS_BOTH, { '?', KEY_F(1) }, "? or F1", "this help", act_help },
+	{ KEYS_BOTH, { 'q' }, "q", "quit", act_quit },
+};
+
+static bool
+applies(const struct binding *b, bool replay)
+{
+	return b->when == KEYS_BOTH || b->when == (replay ? KEYS_REPLAY : KEYS_LIVE);
+}
+
+void
+tui_help(struct text *t, bool replay)
+{
+	struct screen_key keys[sizeof bindings / sizeof bindings[0]];
+	size_t i, n = 0;
+
+	for (i = 0; i < sizeof bindings / sizeof bindings[0]; i++)
+		if (applies(&bindings[i], replay) && bindings[i].names != NULL)
+			keys[n++] = (struct screen_key){ bindings[i].names, bindings[i].what };
+	screen_help(t, replay, keys, n);
+}
+
 static void
 key(struct tui *ui, int ch)
 {
-	struct source_state s;
+	size_t i;
+	int k;
 
 	if (ui->prompt) {
 		prompt_key(ui, ch);
@@ -291,138 +585,14 @@ key(struct tui *ui, int ch)
 		return;
 	}
 	ui->msg[0] = '\0';	/* a message lasts until the next key */
-	ui->src->state(ui->src->ctx, &s);
-	if (ui->replay) {
-		switch (ch) {
-		case KEY_RIGHT:
-			ch = 'n';	/* as n: one frame, or the end */
-			break;
-		case KEY_LEFT:
-			seek(ui, SOURCE_FRAME_PREV, 0, "at the first frame");
-			return;
-		case KEY_NPAGE:
-			seek(ui, SOURCE_KEY_NEXT, 0, "no keyframe after this step");
-			return;
-		case KEY_PPAGE:
-			seek(ui, SOURCE_KEY_PREV, 0, "no keyframe before this step");
-			return;
-		case KEY_HOME:
-			seek(ui, SOURCE_FIRST, 0, "at the first step");
-			return;
-		case KEY_END:
-			seek(ui, SOURCE_LAST, 0, "at the last step");
-			return;
-		case 'g':
-			ui->prompt = true;
-			ui->prompt_step = true;
-			ui->input[0] = '\0';
-			return;
-		case 'r':
-			say(ui, "a replay does not record (drape run --record does)");
-			return;
-		default:
-			break;
-		}
-	}
-	switch (ch) {
-	case 'q':
-		ui->quit = true;
-		break;
-	case ' ':
-		ui->running = !ui->running && !ui->ended && !ui->res->blown_up;
-		if (ui->replay && ui->ended)
-			say(ui, "end of the replay (Home goes back to the first step)");
-		ui->mark_wall = clock_seconds();
-		ui->mark_t = s.t;
-		break;
-	case 'n':
-	case '.':
-		ui->running = false;
-		step_once(ui);
-		break;
-	case '+':
-	case '=':
-		if (ui->spf < STEPS_PER_FRAME_MAX)
-			ui->spf *= 2;
-		say(ui, "at most %ld %s a frame", ui->spf, ui->replay ? "replay frames" : "steps");
-		break;
-	case '-':
-		if (ui->spf > 1)
-			ui->spf /= 2;
-		say(ui, "at most %ld %s a frame", ui->spf, ui->replay ? "replay frames" : "steps");
-		break;
-	case KEY_LEFT:
-	case 'h':
-		ui->cam.yaw -= ROTATE_STEP;
-		break;
-	case KEY_RIGHT:
-	case 'l':
-		ui->cam.yaw += ROTATE_STEP;
-		break;
-	case KEY_UP:
-	case 'k':
-		ui->cam.pitch = fmin(ui->cam.pitch + ROTATE_STEP, V3_PI / 2);
-		break;
-	case KEY_DOWN:
-	case 'j':
-		ui->cam.pitch = fmax(ui->cam.pitch - ROTATE_STEP, -V3_PI / 2);
-		break;
-	case 'H':
-		ui->cam.pan_x += PAN_STEP * ui->cam.radius / ui->cam.zoom;
-		break;
-	case 'L':
-		ui->cam.pan_x -= PAN_STEP * ui->cam.radius / ui->cam.zoom;
-		break;
-	case 'K':
-		ui->cam.pan_y -= PAN_STEP * ui->cam.radius / ui->cam.zoom;
-		break;
-	case 'J':
-		ui->cam.pan_y += PAN_STEP * ui->cam.radius / ui->cam.zoom;
-		break;
-	case 'z':
-		ui->cam.zoom *= ZOOM_STEP;
-		break;
-	case 'Z':
-		ui->cam.zoom /= ZOOM_STEP;
-		break;
-	case 'v':
-		ui->preset = (ui->preset + 1) % VIEW_NPRESETS;
-		reset_camera(ui);
-		say(ui, "view: %s", view_preset_name[ui->preset]);
-		break;
-	case 'o':
-		ui->cam.perspective = !ui->cam.perspective;
-		say(ui, "%s", ui->cam.perspective ? "perspective" : "orthographic");
-		break;
-	case '\t':
-		ui->focus = (enum panel)((ui->focus + 1) % PANEL_COUNT);
-		break;
-	case '[':
-		ui->selected = (ui->selected + s.cl->n - 1) % s.cl->n;
-		break;
-	case ']':
-		ui->selected = (ui->selected + 1) % s.cl->n;
-		break;
-	case '/':
-		ui->prompt = true;
-		ui->prompt_step = false;
-		ui->input[0] = '\0';
-		break;
-	case 'e':
-		seek_event(ui);
-		break;
-	case 'r':
-		toggle_recording(ui);
-		break;
-	case '?':
-	case KEY_F(1):
-		ui->help = true;
-		break;
-	case 12:	/* Ctrl-L */
-		clearok(curscr, TRUE);
-		break;
-	default:
-		break;
+	for (i = 0; i < sizeof bindings / sizeof bindings[0]; i++) {
+		if (!applies(&bindings[i], ui->replay))
+			continue;
+		for (k = 0; bindings[i].keys[k] != 0; k++)
+			if (bindings[i].keys[k] == ch) {
+				bindings[i].act(ui, ch);
+				return;
+			}
 	}
 }
 
@@ -453,26 +623,181 @@ draw_text(const struct text *t, struct rect at, bool focused)
 	attrset(A_NORMAL);
 }
 
+/* The pair of a palette colour near c. */
+static chtype
+palette_attr(struct tui *ui, struct rgb c)
+{
+	static const unsigned char basic[8][3] = {
+		{ 0, 0, 0 }, { 205, 0, 0 }, { 0, 205, 0 }, { 205, 205, 0 },
+		{ 0, 0, 238 }, { 205, 0, 205 }, { 0, 205, 205 }, { 229, 229, 229 },
+	};
+	int k, best = 7;
+
+	if (ui->palette256) {
+		k = 36 * ((c.r * 5 + 127) / 255) + 6 * ((c.g * 5 + 127) / 255) +
+		    (c.b * 5 + 127) / 255;
+		if (!ui->pair_made[k] && init_pair((short)(PAIR_PALETTE + k), (short)(16 + k), -1) == OK)
+			ui->pair_made[k] = 1;
+		return ui->pair_made[k] ? COLOR_PAIR(PAIR_PALETTE + k) : A_NORMAL;
+	}
+	for (k = 1, best = 7; k < 8; k++) {	/* not black: the background may be */
+		long d = 0, e = 0;
+		int j;
+
+		for (j = 0; j < 3; j++) {
+			int q = j == 0 ? c.r : j == 1 ? c.g : c.b;
+
+			d += (long)(q - basic[k][j]) * (q - basic[k][j]);
+			e += (long)(q - basic[best][j]) * (q - basic[best][j]);
+		}
+		if (d < e)
+			best = k;
+	}
+	if (!ui->pair_made[best] && init_pair((short)(PAIR_PALETTE + best), (short)best, -1) == OK)
+		ui->pair_made[best] = 1;
+	return ui->pair_made[best] ? COLOR_PAIR(PAIR_PALETTE + best) : A_NORMAL;
+}
+
+/* The colouring's field for this state, and its scale; false for the
+ * plain colours by kind. */
+static bool
+colour_field(struct tui *ui, const struct source_state *s, const struct contact_event *ev,
+    size_t nev)
+{
+	double m = 0;
+	int p;
+
+	if (!ui->colour || ui->colouring == COLOUR_SHADE || ui->field == NULL ||
+	    colouring_field(ui->colouring, s->cl, s->x, ev, nev, ui->field) != 0)
+		return false;
+	for (p = 0; p < s->cl->n; p++)
+		m = fmax(m, fabs(ui->field[p]));
+	ui->range = fmax(ui->range, colouring_range(ui->colouring, m));
+	return true;
+}
+
+/* The colouring's legend on the view's last row, at its right: the scale
+ * with its numbers (it grows with the run, so the colours alone cannot be
+ * read), or what contact's two colours mean. Each swatch is a reversed
+ * blank in its colour. Left out where the view is too narrow for it. */
+static void
+draw_legend(struct tui *ui, const struct layout *lo)
+{
+	enum colouring c = ui->colouring;
+	char lo_s[32], hi_s[32];
+	int bar = 10, y = lo->view.y + lo->view.h - 1, x, k, len;
+
+	if (c == COLOUR_CONTACT) {
+		static const char *const name[2] = { " obstacle ", " cloth" };
+		static const int touch[2] = { TOUCH_OBSTACLE, TOUCH_CLOTH };
+
+		len = (int)strlen(" contact: ") + 2 + (int)strlen(name[0]) + 1 + 2 +
+		    (int)strlen(name[1]) + 1;
+		if (len > lo->view.w)
+			return;
+		x = lo->view.x + lo->view.w - len;
+		attrset(A_NORMAL);
+		mvaddstr(y, x, " contact: ");
+		for (k = 0; k < 2; k++) {
+			float f[3];
+
+			colouring_colour(c, touch[k], 1, f);
+			attrset(palette_attr(ui, render_rgb(f)) | A_REVERSE);
+			addstr("  ");
+			attrset(A_NORMAL);
+			addstr(name[k]);
+		}
+		addch(' ');
+		return;
+	}
+	colouring_label(c, colouring_is_signed(c) ? -ui->range : 0, lo_s, sizeof lo_s);
+	colouring_label(c, ui->range, hi_s, sizeof hi_s);
+	len = 1 + (int)strlen(colouring_title[c]) + 1 + (int)strlen(lo_s) + 1 + bar + 1 +
+	    (int)strlen(hi_s) + 1;
+	if (len > lo->view.w)
+		return;
+	x = lo->view.x + lo->view.w - len;
+	attrset(A_NORMAL);
+	mvprintw(y, x, " %s %s ", colouring_title[c], lo_s);
+	for (k = 0; k < bar; k++) {
+		double lo_v = colouring_is_signed(c) ? -1 : 0;
+		float f[3];
+
+		colouring_colour(c, ui->range * (lo_v + (1 - lo_v) * (k + 0.5) / bar), ui->range, f);
+		attrset(palette_attr(ui, render_rgb(f)) | A_REVERSE);
+		addch(' ');
+	}
+	attrset(A_NORMAL);
+	printw(" %s ", hi_s);
+}
+
 static int
 draw_view(struct tui *ui, const struct layout *lo, const struct source_state *s)
 {
 	size_t nev;
 	const struct contact_event *ev = ui->src->events(ui->src->ctx, &nev);
+	struct paint_opts po = { ui->colouring, 1, 0, true };
+	bool coloured;
 	int i, j;
 
+	if (s->step == 0) {
+		ev = NULL;
+		nev = 0;
+	}
+	coloured = colour_field(ui, s, ev, nev);
+	po.range = ui->range > 0 ? ui->range : 1;
+	if (ui->glyphs != GLYPHS_ASCII) {
+		if ((ui->g.w != lo->view.w || ui->g.h != lo->view.h || ui->g.mode != ui->glyphs) &&
+		    glyphs_resize(&ui->g, ui->glyphs, lo->view.w, lo->view.h) != 0)
+			return -1;
+		if (!coloured)
+			po.colouring = COLOUR_SHADE;
+		if (glyphs_draw(&ui->g, &ui->cam, s->sc, s->cl, s->x, coloured ? ui->field : NULL,
+		    &po, ev, nev, ui->selected) != 0)
+			return -1;
+		for (j = 0; j < ui->g.h; j++) {
+			move(lo->view.y + j, lo->view.x);
+			for (i = 0; i < ui->g.w; i++) {
+				size_t at = (size_t)j * (size_t)ui->g.w + (size_t)i;
+				char u[4];
+
+				glyphs_utf8(ui->g.cp[at], u);
+				attrset(coloured && ui->g.kind[at] == CELL_CLOTH ?
+				    palette_attr(ui, ui->g.colour[at]) : cell_attr(ui, ui->g.kind[at]));
+				addstr(u);
+			}
+		}
+		attrset(A_NORMAL);
+		if (coloured)
+			draw_legend(ui, lo);
+		return 0;
+	}
 	if ((ui->r.w != lo->view.w || ui->r.h != lo->view.h) &&
 	    raster_resize(&ui->r, lo->view.w, lo->view.h) != 0)
 		return -1;
-	view_draw(&ui->r, &ui->cam, s->sc, s->x, s->cl->n, s->cl->tri, s->cl->ntri,
-	    s->step > 0 ? ev : NULL, s->step > 0 ? nev : 0, ui->selected);
+	view_draw(&ui->r, &ui->cam, s->sc, s->x, s->cl->n, s->cl->tri, s->cl->ntri, ev, nev,
+	    ui->selected);
+	if (coloured) {
+		/* the colours of the same view, a pixel a cell */
+		if ((ui->cells.w != lo->view.w || ui->cells.h != lo->view.h) &&
+		    render_resize(&ui->cells, lo->view.w, lo->view.h, RASTER_ASPECT) != 0)
+			return -1;
+		if (paint_scene(&ui->cells, &ui->cam, s->sc, s->cl, s->x, ui->field, &po) != 0)
+			return -1;
+	}
 	for (j = 0; j < ui->r.h; j++) {
 		move(lo->view.y + j, lo->view.x);
 		for (i = 0; i < ui->r.w; i++) {
 			size_t at = (size_t)j * (size_t)ui->r.w + (size_t)i;
+			chtype a = coloured && ui->r.kind[at] == CELL_CLOTH &&
+			    ui->cells.kind[at] == CELL_CLOTH ?
+			    palette_attr(ui, render_at(&ui->cells, i, j)) : cell_attr(ui, ui->r.kind[at]);
 
-			addch((chtype)(unsigned char)ui->r.ch[at] | cell_attr(ui, ui->r.kind[at]));
+			addch((chtype)(unsigned char)ui->r.ch[at] | a);
 		}
 	}
+	if (coloured)
+		draw_legend(ui, lo);
 	return 0;
 }
 
@@ -524,7 +849,7 @@ draw(struct tui *ui)
 		struct text t;
 
 		text_init(&t, cols - 2);
-		screen_help(&t, ui->replay);
+		tui_help(&t, ui->replay);
 		draw_text(&t, (struct rect){ 2, 1, cols - 2, rows - 1 }, false);
 	} else {
 		si.s = &s;
@@ -536,8 +861,9 @@ draw(struct tui *ui)
 			si.pos = &pos;
 		} else {
 			rec = ui->src->recording(ui->src->ctx, NULL);
-			si.mode = ui->res->blown_up ? "blown up" : ui->ended ? "end" :
-			    ui->running ? "running" : "paused";
+			/* a run that cannot go on (out of memory) did not blow up */
+			si.mode = ui->res->run_error ? "error" : ui->res->blown_up ? "blown up" :
+			    ui->ended ? "end" : ui->running ? "running" : "paused";
 			si.recording = rec != NULL ? rec : "no";
 			si.pos = NULL;
 		}
@@ -603,6 +929,7 @@ colours(struct tui *ui)
 	init_pair(PAIR_FLOOR, COLOR_BLUE, -1);
 	init_pair(PAIR_CONTACT, COLOR_RED, -1);
 	init_pair(PAIR_SELECTED, COLOR_MAGENTA, -1);
+	ui->palette256 = COLORS >= 256 && COLOR_PAIRS >= PAIR_PALETTE + PALETTE_SIZE;
 }
 
 static void
@@ -668,13 +995,25 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 	ui.running = !opt->paused;
 	ui.preset = VIEW_ISO;
 	raster_init(&ui.r);
+	glyphs_init(&ui.g);
+	render_init(&ui.cells);
+	/* the locale's character set, for ncurses too (LC_CTYPE only: numbers
+	 * stay as C prints them) */
+	ui.utf8 = glyphs_locale_utf8();
+	ui.glyphs = glyphs_resolve(opt->glyphs, ui.utf8);
+	if (!ui.utf8 && ui.glyphs != GLYPHS_ASCII) {
+		ui.glyphs = GLYPHS_ASCII;
+		say(&ui, "braille and half blocks need a UTF-8 locale (LANG, LC_ALL): ASCII");
+	}
 	src->state(src->ctx, &s);
+	ui.field = malloc((s.cl->n > 0 ? (size_t)s.cl->n : 1) * sizeof *ui.field);
 	ui.selected = cloth_node(s.cl, s.cl->nu / 2, s.cl->nv / 2);
 	if (ui.selected < 0)
 		ui.selected = s.cl->n / 2;
 	if (evlog_init(&ui.log, s.cl->n) != 0) {
 		res->end = TUI_ERROR;
 		snprintf(res->why, sizeof res->why, "out of memory for the event log");
+		free(ui.field);
 		return;
 	}
 	reset_camera(&ui);
@@ -712,6 +1051,9 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 	for (k = 0; k < 3; k++)
 		sigaction(sigs[k], &old[k], NULL);
 	raster_free(&ui.r);
+	glyphs_free(&ui.g);
+	render_free(&ui.cells);
+	free(ui.field);
 	evlog_free(&ui.log);
 }
 

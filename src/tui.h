@@ -6,8 +6,10 @@
 #ifndef DRAPE_TUI_H
 #define DRAPE_TUI_H
 
+#include <signal.h>
 #include <stdbool.h>
 
+#include "glyphs.h"
 #include "source.h"
 
 #define TUI_DELAY_MAX 100	/* tenths of a second */
@@ -16,6 +18,8 @@ struct tui_opts {
 	bool color;		/* colour if the terminal has it */
 	int delay;		/* between redraws, tenths of a second, 1..TUI_DELAY_MAX */
 	bool paused;		/* start paused */
+	enum glyphs glyphs;	/* the view's characters: GLYPHS_AUTO (0) follows the
+				 * locale; Unicode needs a UTF-8 one */
 };
 
 enum tui_end {
@@ -27,12 +31,21 @@ enum tui_end {
 struct tui_result {
 	enum tui_end end;
 	int signo;
-	bool blown_up;		/* the run failed: why */
-	char why[400];
+	bool blown_up;		/* the run stopped: why */
+	bool run_error;		/* and not by a blow-up (out of memory) */
+	char why[600];
 };
 
 /* Runs the front end on stdin and stdout until it ends; fills *res. */
 void tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res);
+
+/* The flag the TUI's SIGINT, SIGTERM and SIGHUP handler sets, for a
+ * stepper to poll within a step (stepper_set_stop). */
+const volatile sig_atomic_t *tui_stop_flag(void);
+
+struct text;
+/* The help screen, from the table the keys are dispatched by. */
+void tui_help(struct text *t, bool replay);
 
 /* -d/--delay's value: a whole number of tenths from 1 to TUI_DELAY_MAX.
  * Returns 0 with *delay set, or -1. */

@@ -31,6 +31,9 @@ static const struct unit units[] = {
 	{ DIM_VELOCITY, "m/s", 1 }, { DIM_VELOCITY, "cm/s", 1e-2 }, { DIM_VELOCITY, "mm/s", 1e-3 },
 	{ DIM_ACCEL, "m/s2", 1 },
 	{ DIM_RATE, "1/s", 1 }, { DIM_RATE, "/s", 1 }, { DIM_RATE, "Hz", 1 },
+	{ DIM_BYTES, "B", 1 }, { DIM_BYTES, "kB", 1e3 }, { DIM_BYTES, "MB", 1e6 },
+	{ DIM_BYTES, "GB", 1e9 }, { DIM_BYTES, "KiB", 1024.0 }, { DIM_BYTES, "MiB", 1048576.0 },
+	{ DIM_BYTES, "GiB", 1073741824.0 },
 };
 
 const char *
@@ -47,6 +50,7 @@ units_describe(enum unit_dim dim)
 	case DIM_VELOCITY: return "a velocity (m/s, cm/s, mm/s)";
 	case DIM_ACCEL: return "an acceleration (m/s2)";
 	case DIM_RATE: return "a rate (1/s, /s, Hz)";
+	case DIM_BYTES: return "a size (B, kB, MB, GB, KiB, MiB, GiB)";
 	}
 	return "a value";
 }

@@ -15,6 +15,7 @@ enum unit_dim {
 	DIM_VELOCITY,		/* m/s */
 	DIM_ACCEL,		/* m/s2 */
 	DIM_RATE,		/* 1/s */
+	DIM_BYTES,		/* B */
 };
 
 /*

@@ -2,9 +2,15 @@
  * with file:line, exit 2, nothing simulated), the drape coefficient and
  * hash lines of the summary, blow-up (exit 3), OBJ output, determinism
  * across runs. */
+/* wait4, for a child's own peak memory */
+#define _DEFAULT_SOURCE
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "config.h"
 #include "testutil.h"
 #include "runbin.h"
@@ -233,6 +239,27 @@ blowup_exits_3(void **state)
 	assert_non_null(strstr(r.err, ": node "));
 }
 
+/* A run that cannot go on for a reason outside the simulation (here the
+ * chapter's hash cannot cut the scene into cubes of 1e-8 m once a node
+ * has been carried 170 km in the first step; a cell too small for the
+ * scene as it starts is refused at parse, test_hostile) is an error,
+ * exit 1, not a blow-up. */
+static void
+broad_phase_error_exits_1(void **state)
+{
+	struct result r;
+
+	(void)state;
+	run_text(&r, "tiny-cell.scene", "[simulation]\nduration = 1 ms\n"
+	    "[cloth]\nnodes = 4 4\nspacing = 1 cm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "modulus_warp = 0.3 MPa\nmodulus_weft = 0.3 MPa\nshear_modulus = 0\n"
+	    "bending_warp = 0\nbending_weft = 0\n[move]\nnodes = 0 0\nvelocity = 1e9 0 0 m/s\n"
+	    "[collision]\nself = on\nbroad = seed\nnarrow = seed\ncell = 1e-8 m\n");
+	assert_int_equal(r.status, 1);
+	assert_non_null(strstr(r.err, "step 0 (t = 0 s): spatial hash"));
+	assert_null(strstr(r.err, "blow-up"));
+}
+
 static void
 final_obj(void **state)
 {
@@ -325,6 +352,314 @@ snapshot_of_a_replay(void **state)
 	assert_non_null(strstr(r.err, "ends at step"));
 }
 
+/* Runs "drape ARGS" as runbin's drape() does and returns its peak
+ * resident memory in kB (the process's own, through wait4). */
+static long
+drape_rss(struct result *r, const char *args)
+{
+	char cmd[4096], out[700], err[700];
+	struct rusage ru;
+	pid_t pid;
+	int st;
+
+	snprintf(out, sizeof out, "%s/out", dir);
+	snprintf(err, sizeof err, "%s/err", dir);
+	snprintf(cmd, sizeof cmd, "exec '%s' %s >'%s' 2>'%s' </dev/null", DRAPE, args, out, err);
+	fflush(NULL);
+	if ((pid = fork()) == 0) {
+		execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+		_exit(127);
+	}
+	assert_true(pid > 0);
+	assert_int_equal(wait4(pid, &st, 0, &ru), pid);
+	assert_true(WIFEXITED(st));
+	r->status = WEXITSTATUS(st);
+	slurp(out, r->out, sizeof r->out);
+	slurp(err, r->err, sizeof r->err);
+	return ru.ru_maxrss;
+}
+
+/* Built with AddressSanitizer: gcc says so with __SANITIZE_ADDRESS__,
+ * clang only through __has_feature. */
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+
+/* Peak memory a run may take here: AddressSanitizer's shadow and
+ * quarantine add about 170 MB to any run. */
+#ifdef UNDER_ASAN
+#define RSS_SLACK_KB (400 * 1024)
+#else
+#define RSS_SLACK_KB 0
+#endif
+
+#define TABLECLOTH_AT(extra) "[simulation]\nduration = 1 ms\n[cloth]\nnodes = 25 25\n" \
+	"spacing = 10 mm\norigin = -0.12 0.15 -0.12 m\norientation = +x +z\n" extra \
+	"weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n" \
+	"modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n" \
+	"bending_weft = 2 uN*m\ndamping = 2 /s\n[box]\nmin = 0 0 -0.08 m\n" \
+	"max = 0.14 0.12 0.06 m\n[plane]\npoint = 0 0 0 m\n"
+#define GRID_CCD "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n"
+
+/* Issue 13's reproducers for the grid broad phase, trimmed: the fuzzed
+ * strip variant (a blow-up, at once and in little memory), a tablecloth
+ * thrown at 300 m/s (swept boxes of many cubes each: it took 855 MB and
+ * did not finish 3 steps in 150 s) and one under a 10 m two-triangle floor
+ * mesh (214 MB): memory stays with the geometry; and a memory limit the
+ * step cannot keep is an error, exit 1, not a blow-up. */
+static void
+broad_phase_bounded(void **state)
+{
+	struct result r;
+	char args[1400], obj[700];
+	const char *scene;
+	long kb;
+	FILE *f;
+
+	(void)state;
+	/* the fuzzed strip: 13.9 GB and 612 s inside its tenth step, which
+	 * began already blown up (now found so before the broad phase) */
+	snprintf(args, sizeof args, "run --headless --set 'cloth.spacing=3 mm' "
+	    "--set 'cloth.weight=149 g/m2' --set 'cloth.modulus_warp=1.45 MPa' "
+	    "--set 'pin.nodes=4 *' --set 'move.nodes=-3 *' --set 'load.nodes=4 *' "
+	    "--set 'load.force=0 1 0.02 mN' --set 'plane.normal=1 0 0' '%s/scenes/strip.scene'",
+	    TOP_SRCDIR);
+	kb = drape_rss(&r, args);
+	print_message("the fuzzed strip: exit %d, %ld kB\n", r.status, kb);
+	assert_int_equal(r.status, 3);
+	assert_non_null(strstr(r.err, "blow-up at step "));
+	assert_non_null(strstr(r.err, "runaway energy"));
+	assert_true(kb < 60 * 1024 + RSS_SLACK_KB);
+
+	scene = write_scene("thrown.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n") GRID_CCD);
+	snprintf(args, sizeof args, "run --headless '%s'", scene);
+	kb = drape_rss(&r, args);
+	print_message("thrown at 300 m/s: exit %d, %ld kB\n", r.status, kb);
+	assert_int_equal(r.status, 0);
+	assert_true(kb < 100 * 1024 + RSS_SLACK_KB);
+
+	snprintf(obj, sizeof obj, "%s/floor10.obj", dir);
+	assert_non_null(f = fopen(obj, "w"));
+	fputs("v -5 0.001 -5\nv 5 0.001 -5\nv 5 0.001 5\nv -5 0.001 5\nf 1 3 2\nf 1 4 3\n", f);
+	assert_int_equal(fclose(f), 0);
+	scene = write_scene("floor.scene", TABLECLOTH_AT("") "[mesh]\nfile = floor10.obj\n" GRID_CCD);
+	snprintf(args, sizeof args, "run --headless '%s'", scene);
+	kb = drape_rss(&r, args);
+	print_message("under a 10 m floor mesh: exit %d, %ld kB\n", r.status, kb);
+	assert_int_equal(r.status, 0);
+	assert_true(kb < 60 * 1024 + RSS_SLACK_KB);
+
+	scene = write_scene("limited.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n") GRID_CCD
+	    "memory = 2 MB\n");
+	snprintf(args, sizeof args, "run --headless '%s'", scene);
+	drape(&r, args);
+	assert_int_equal(r.status, 1);
+	assert_non_null(strstr(r.err, "more than the 2 MB that [collision] memory allows"));
+	assert_null(strstr(r.err, "blow-up"));
+	run_text(&r, "small-limit.scene", TABLECLOTH_AT("") GRID_CCD "memory = 10 kB\n");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "memory: expected 'auto' or at least 1 MB"));
+}
+
+/* Issue 13: out of memory is an error, exit 1, never a blow-up: the
+ * tablecloth thrown at 300 m/s with 50 x 50 nodes wants 240 MB for its
+ * first step's pairs, here under a 100 MB address space (ulimit -v), so
+ * that malloc fails in the broad phase. Not under AddressSanitizer, which
+ * reserves terabytes of address space before main. */
+static void
+out_of_memory_exits_1(void **state)
+{
+	char cmd[3000], path[700], text[4096];
+	const char *scene;
+	int st;
+
+	(void)state;
+#ifdef UNDER_ASAN
+	skip();
+#endif
+	scene = write_scene("thrown-big.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n")
+	    GRID_CCD);
+	snprintf(path, sizeof path, "%s/oom.err", dir);
+	snprintf(cmd, sizeof cmd, "ulimit -v 100000 && exec '%s' run --headless --set "
+	    "'cloth.nodes=50 50' '%s' >/dev/null 2>'%s'", DRAPE, scene, path);
+	st = system(cmd);
+	slurp(path, text, sizeof text);
+	if (st == -1 || !WIFEXITED(st) || WEXITSTATUS(st) != 1)
+		fail_msg("status %d, stderr '%s'; expected exit 1", st, text);
+	assert_non_null(strstr(text, "step 0 (t = 0 s): broad phase: out of memory"));
+	assert_null(strstr(text, "blow-up"));
+}
+
+/* SIGHUP (an SSH session dropped) on a headless run, in the middle of its
+ * slow steps: it stops (exit 130), says so, closes its replay and writes
+ * its --final-obj. */
+static void
+sighup_headless(void **state)
+{
+	char cmd[3000], path[700], text[4096];
+	const char *scene;
+	struct result r;
+	FILE *f;
+	int code = -1;
+
+	(void)state;
+	scene = write_scene("thrown-long.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n")
+	    GRID_CCD);
+	snprintf(cmd, sizeof cmd, "'%s' run --headless --until 10 --record '%s/hup.drr' "
+	    "--final-obj '%s/hup.obj' '%s' >/dev/null 2>'%s/hup.err' & pid=$!; sleep 1; "
+	    "kill -HUP $pid; wait $pid; echo $? >'%s/hup.rc'", DRAPE, dir, dir, scene, dir, dir);
+	assert_int_equal(system(cmd), 0);
+	snprintf(path, sizeof path, "%s/hup.rc", dir);
+	assert_non_null(f = fopen(path, "r"));
+	assert_int_equal(fscanf(f, "%d", &code), 1);
+	fclose(f);
+	assert_int_equal(code, 130);
+	snprintf(path, sizeof path, "%s/hup.err", dir);
+	slurp(path, text, sizeof text);
+	assert_non_null(strstr(text, "drape: hung up at step"));
+	snprintf(cmd, sizeof cmd, "info '%s/hup.drr'", dir);
+	drape(&r, cmd);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "closed cleanly"));
+	snprintf(path, sizeof path, "%s/hup.obj", dir);
+	slurp(path, text, sizeof text);
+	assert_non_null(strstr(text, "\nv "));
+}
+
+/* Runs "drape ARGS" and sends it sig after delay seconds; its exit status
+ * and stderr in r, and the seconds from the signal to its exit. */
+static double
+drape_signalled(struct result *r, const char *args, int sig, double delay)
+{
+	char cmd[4096], err[700];
+	struct timespec ts = { (time_t)delay, (long)((delay - (time_t)delay) * 1e9) };
+	double t0;
+	pid_t pid;
+	int st;
+
+	snprintf(err, sizeof err, "%s/err", dir);
+	snprintf(cmd, sizeof cmd, "exec '%s' %s >/dev/null 2>'%s' </dev/null", DRAPE, args, err);
+	fflush(NULL);
+	if ((pid = fork()) == 0) {
+		execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+		_exit(127);
+	}
+	assert_true(pid > 0);
+	nanosleep(&ts, NULL);
+	t0 = clock_seconds();
+	assert_int_equal(kill(pid, sig), 0);
+	assert_int_equal(waitpid(pid, &st, 0), pid);
+	t0 = clock_seconds() - t0;
+	assert_true(WIFEXITED(st));
+	r->status = WEXITSTATUS(st);
+	slurp(err, r->err, sizeof r->err);
+	r->out[0] = '\0';
+	return t0;
+}
+
+/* Issue 13: SIGINT, SIGTERM and SIGHUP are honoured within a step, each
+ * sent at another moment of the shipped tablecloth's steps, thrown at
+ * 300 m/s (a third of a second a step here: its broad phase sorts 1.5
+ * million pairs and its ccd passes test 2.3 million), and with the fast
+ * integrator (which looks at as many pairs for its contacts): it stops
+ * within 0.1 s, or within a tenth of a step where a step is slower than a
+ * second (under the sanitizers, or a loaded machine), and its replay is
+ * closed. Waiting for the step's end took up to 0.15 s (the sort of the
+ * pairs did not look at the flag), and 0.2 s with the fast integrator (nor
+ * did its search for contacts); before the flag was polled within a step,
+ * the whole step. */
+static void
+signals_within_a_step(void **state)
+{
+	static const struct {
+		int sig;
+		double delay;
+		const char *word, *opt;
+	} sigs[] = {
+		{ SIGINT, 1.3, "interrupted", "" }, { SIGTERM, 1.9, "terminated", "" },
+		{ SIGHUP, 2.5, "hung up", "" },
+		/* the fast integrator looks at the pairs before its substeps */
+		{ SIGINT, 2.6, "interrupted", "--integrator fast" },
+		{ SIGTERM, 2.9, "terminated", "--integrator fast" },
+	};
+	char args[2000];
+	const char *at = NULL;
+	struct result r, info;
+	double took, step_wall, bound;
+	long steps;
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
+		snprintf(args, sizeof args, "run --headless --until 10 %s --record '%s/sig.drr' "
+		    "--set 'cloth.velocity=300 300 300 m/s' '%s/scenes/tablecloth.scene'",
+		    sigs[i].opt, dir, TOP_SRCDIR);
+		took = drape_signalled(&r, args, sigs[i].sig, sigs[i].delay);
+		if (r.status != 130 || strstr(r.err, sigs[i].word) == NULL ||
+		    (at = strstr(r.err, " at step ")) == NULL)
+			fail_msg("%s: status %d, stderr '%s'", sigs[i].word, r.status, r.err);
+		steps = strtol(at + 9, NULL, 10);
+		/* at most the wall time of a step: setup, the steps done and a
+		 * part of the next over one more step */
+		step_wall = sigs[i].delay / (double)(steps + 1);
+		bound = step_wall / 10 > 0.1 ? step_wall / 10 : 0.1;
+		print_message("%s%s%s after %.1f s (step %ld, about %.2f s a step): stopped in "
+		    "%.3f s\n", sigs[i].word, *sigs[i].opt ? ", " : "", sigs[i].opt, sigs[i].delay,
+		    steps, step_wall, took);
+		if (took > bound)
+			fail_msg("%s: stopped in %.3f s; expected at most %.3f s", sigs[i].word, took,
+			    bound);
+		snprintf(args, sizeof args, "info '%s/sig.drr'", dir);
+		drape(&info, args);
+		assert_int_equal(info.status, 0);
+		assert_non_null(strstr(info.out, "closed cleanly"));
+	}
+}
+
+/* Issue 13: a large cloth with nothing to collide with spends its step in
+ * the forces, the Jacobian and the substeps, which look at the signal
+ * flag too: 768 x 768 nodes take about a second a step here (implicit
+ * Euler; the fast path's step is many substeps), and each method stops
+ * within a quarter of one or 0.15 s (the exit's teardown of 600 k nodes
+ * counted in), where it used to finish the step. */
+static void
+signals_within_a_large_step(void **state)
+{
+	/* (RK4's steps here are a few force evaluations, 0.3 s in all) */
+	static const char *const methods[] = { "implicit-euler", "fast" };
+	char args[2000];
+	const char *path = write_scene("large.scene", "[simulation]\nduration = 10 s\n"
+	    "[cloth]\nnodes = 768 768\nspacing = 1 mm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 10 kPa\n"
+	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n");
+	struct result r;
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof methods / sizeof methods[0]; i++) {
+		const char *at = NULL;
+		double took, step_wall, delay = 4;
+		long steps;
+
+		snprintf(args, sizeof args, "run --headless --integrator %s '%s'", methods[i], path);
+		took = drape_signalled(&r, args, SIGINT, delay);
+		if (r.status != 130 || (at = strstr(r.err, "interrupted at step ")) == NULL)
+			fail_msg("%s: status %d, stderr '%s'", methods[i], r.status, r.err);
+		steps = strtol(at + 20, NULL, 10);
+		/* an upper bound on a step's wall time: setup counted in */
+		step_wall = delay / (double)(steps + 1);
+		print_message("%s, 768 x 768: stopped in %.3f s (step %ld, at most %.2f s a step)\n",
+		    methods[i], took, steps, step_wall);
+		if (took > 0.15 && took > step_wall / 4)
+			fail_msg("%s: stopped in %.3f s; expected at most a quarter of a step (%.3f s)",
+			    methods[i], took, step_wall / 4);
+	}
+}
+
 int
 main(void)
 {
@@ -334,6 +669,12 @@ main(void)
 		cmocka_unit_test(good_scene_runs),
 		cmocka_unit_test(drape_coefficient_and_hash),
 		cmocka_unit_test(blowup_exits_3),
+		cmocka_unit_test(broad_phase_error_exits_1),
+		cmocka_unit_test(broad_phase_bounded),
+		cmocka_unit_test(out_of_memory_exits_1),
+		cmocka_unit_test(sighup_headless),
+		cmocka_unit_test(signals_within_a_step),
+		cmocka_unit_test(signals_within_a_large_step),
 		cmocka_unit_test(final_obj),
 		cmocka_unit_test(two_runs_same_hash),
 		cmocka_unit_test(snapshot_of_a_replay),

@@ -45,6 +45,8 @@ static long
 grid_covers_brute(const char *name, struct geom g, const double *x0, const double *x1,
     double cell, struct broad *grid, struct broad *grid_seed, struct broad *brute)
 {
+	struct broad_want ccd = collide_broad_want(NARROW_CCD, true);
+	struct broad_want seed = collide_broad_want(NARROW_SEED, true);
 	struct drape_err err;
 	long hits = 0;
 	size_t k;
@@ -52,9 +54,9 @@ grid_covers_brute(const char *name, struct geom g, const double *x0, const doubl
 	g.x0 = x0;
 	g.x1 = x1;
 	g.vbox = NULL;
-	if (broad_find(grid, &g, cell, NARROW_CCD, &err) != 0 ||
-	    broad_find(grid_seed, &g, cell, NARROW_SEED, &err) != 0 ||
-	    broad_find(brute, &g, 0, NARROW_CCD, &err) != 0)
+	if (broad_find(grid, &g, cell, &ccd, &err) != 0 ||
+	    broad_find(grid_seed, &g, cell, &seed, &err) != 0 ||
+	    broad_find(brute, &g, 0, &ccd, &err) != 0)
 		fail_msg("%s", err.msg);
 	for (k = 0; k < brute->nvt; k++) {
 		int v = brute->vt[k].v, t = brute->vt[k].t, j, e, hit = 0;
@@ -125,7 +127,7 @@ audit_state(const struct stepper *st, long *inside)
 {
 	struct check_result r;
 
-	assert_int_equal(check_state(st->sc, &st->cl, stepper_x(st), &r), 0);
+	assert_int_equal(check_state(stepper_scene(st), cloth_of(st), stepper_x(st), &r), 0);
 	*inside = r.inside;
 	return r.pairs;
 }
@@ -136,16 +138,16 @@ audit_state(const struct stepper *st, long *inside)
 static void
 run_checked(struct scene *sc, struct run *r)
 {
-	struct stepper st;
-	struct blowup bl;
+	struct stepper *st;
+	struct step_failure bl;
 	struct broad grid, grid_seed, brute;
 	double frame = 1 / sc->output_rate, next = 0, *x0 = NULL;
 	long k = 0, motion = 0;
 	size_t nx;
 	struct energy e;
 
-	init_stepper(&st, sc);
-	nx = 3 * (size_t)collide_geom(&st.col)->nv;
+	st = new_stepper(sc);
+	nx = 3 * (size_t)stepper_geom(st)->nv;
 	r->frames = r->contacts = r->worst = r->cover_hits = r->cover_motions = 0;
 	r->ke_max = 0;
 	r->blew_up = false;
@@ -155,42 +157,42 @@ run_checked(struct scene *sc, struct run *r)
 		broad_init(&grid, BROAD_GRID);
 		broad_init(&grid_seed, BROAD_GRID);
 		broad_init(&brute, BROAD_BRUTE);
-		memcpy(x0, collide_geom(&st.col)->x0, nx * sizeof *x0);	/* obstacle vertices */
+		memcpy(x0, stepper_geom(st)->x0, nx * sizeof *x0);	/* obstacle vertices */
 	}
 	for (;;) {
-		if (st.t >= next - 1e-12 || stepper_done(&st)) {
-			long inside, bad = audit_state(&st, &inside);
+		if (report_of(st).t >= next - 1e-12 || stepper_done(st)) {
+			long inside, bad = audit_state(st, &inside);
 
 			if (bad + inside > r->worst) {
 				print_message("  %s: t = %.3f s, %ld intersecting pairs, %ld nodes in "
-				    "obstacles\n", sc->name, st.t, bad, inside);
+				    "obstacles\n", sc->name, report_of(st).t, bad, inside);
 				r->worst = bad + inside;
 			}
 			r->frames++;
 			k++;
 			next = (double)(k * r->audit_every) * frame;
 		}
-		if (r->cover_gap > 0 && st.step % r->cover_gap == 0) {
-			const struct geom *g = collide_geom(&st.col);
+		if (r->cover_gap > 0 && report_of(st).step % r->cover_gap == 0) {
+			const struct geom *g = stepper_geom(st);
 			double *x1 = malloc(nx * sizeof *x1);
 
 			assert_non_null(x1);
 			memcpy(x1, x0, nx * sizeof *x1);
-			memcpy(x1, stepper_x(&st), 3 * (size_t)st.cl.n * sizeof *x1);
-			if (st.step > 0 && motion++ % 4 == 0) {
-				r->cover_hits += grid_covers_brute(sc->name, *g, x0, x1, st.col.cell,
+			memcpy(x1, stepper_x(st), 3 * (size_t)cloth_of(st)->n * sizeof *x1);
+			if (report_of(st).step > 0 && motion++ % 4 == 0) {
+				r->cover_hits += grid_covers_brute(sc->name, *g, x0, x1, report_of(st).cell,
 				    &grid, &grid_seed, &brute);
 				r->cover_motions++;
 			}
 			free(x0);
 			x0 = x1;
 		}
-		stepper_energy(&st, &e);
+		stepper_energy(st, &e);
 		r->ke_max = fmax(r->ke_max, e.kinetic);
 		r->ke_end = e.kinetic;
-		if (stepper_done(&st))
+		if (stepper_done(st))
 			break;
-		if (stepper_step(&st, &bl) != 0) {
+		if (stepper_step(st, &bl) != STEP_OK) {
 			if (!r->may_blow_up)
 				fail_msg("%s blew up at step %ld: %s", sc->name, bl.step, bl.why);
 			print_message("  %s blew up at step %ld, t = %.4f s: %s\n", sc->name,
@@ -199,16 +201,16 @@ run_checked(struct scene *sc, struct run *r)
 			break;
 		}
 		for (int t = 0; t < CONTACT_NTYPES; t++)
-			r->contacts += st.col.st.contacts[t];
+			r->contacts += report_of(st).last->n[STAT_CONTACTS + t];
 	}
-	r->t_end = st.t;
+	r->t_end = report_of(st).t;
 	if (r->cover_gap > 0) {
 		broad_free(&grid);
 		broad_free(&grid_seed);
 		broad_free(&brute);
 	}
 	free(x0);
-	stepper_free(&st);
+	stepper_free(st);
 }
 
 /* A shipped scene at its own settings, the whole run: no intersecting pair
@@ -257,8 +259,8 @@ max_strain(const struct stepper *st)
 	double worst = 0;
 	size_t s;
 
-	for (s = 0; s < st->cl.nsprings; s++) {
-		const struct spring *sp = &st->cl.springs[s];
+	for (s = 0; s < cloth_of(st)->nsprings; s++) {
+		const struct spring *sp = &cloth_of(st)->springs[s];
 		double l = v3_len(v3_sub(v3_load(stepper_x(st) + 3 * sp->b),
 		    v3_load(stepper_x(st) + 3 * sp->a)));
 
@@ -274,25 +276,25 @@ static void
 test_implicit_resting_on_box(void **state)
 {
 	struct scene sc;
-	struct stepper st;
-	struct blowup bl;
+	struct stepper *st;
+	struct step_failure bl;
 	double worst = 0;
 
 	(void)state;
 	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
 	sc.integrator = INTEG_IMPLICIT_EULER;
 	sc.duration = 0.3;
-	init_stepper(&st, &sc);
-	while (!stepper_done(&st)) {
-		assert_int_equal(stepper_step(&st, &bl), 0);
-		if (st.t > 0.1)		/* on the box from about 0.08 s */
-			worst = fmax(worst, max_strain(&st));
+	st = new_stepper(&sc);
+	while (!stepper_done(st)) {
+		assert_int_equal(stepper_step(st, &bl), STEP_OK);
+		if (report_of(st).t > 0.1)		/* on the box from about 0.08 s */
+			worst = fmax(worst, max_strain(st));
 	}
 	print_message("implicit Euler at %.3g s on the box: the largest strain after 0.1 s is "
-	    "%.2f %%\n", st.dt_set, 100 * worst);
-	assert_true(st.col.total.contacts[CONTACT_OBSTACLE] > 1000);
+	    "%.2f %%\n", report_of(st).dt_set, 100 * worst);
+	assert_true(report_of(st).total->n[STAT_CONTACTS + CONTACT_OBSTACLE] > 1000);
 	assert_true(worst < 0.10);	/* RK4: about 2 % */
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
 }
 
@@ -328,8 +330,8 @@ static void
 test_icosahedron(void **state)
 {
 	struct scene sc;
-	struct stepper st;
-	struct blowup bl;
+	struct stepper *st;
+	struct step_failure bl;
 	const struct mesh *m;
 	long contacts = 0;
 
@@ -337,21 +339,125 @@ test_icosahedron(void **state)
 	load_shipped(&sc, SCENE_DIR "icosahedron.scene");
 	assert_int_equal(sc.nobstacles, 1);
 	m = &sc.obstacles[0].mesh;
-	init_stepper(&st, &sc);
-	while (!stepper_done(&st)) {
+	st = new_stepper(&sc);
+	while (!stepper_done(st)) {
 		double w;
 
-		if (stepper_step(&st, &bl) != 0)
+		if (stepper_step(st, &bl) != STEP_OK)
 			fail_msg("blew up at step %ld: %s", bl.step, bl.why);
-		contacts += (long)st.col.nev;
-		w = mesh_winding_number(m, v3_load(stepper_x(&st)));
+		contacts += (long)report_of(st).nev;
+		w = mesh_winding_number(m, v3_load(stepper_x(st)));
 		if (fabs(w - 1) > 1e-6)
-			fail_msg("step %ld: the node is out (winding number %g)", st.step, w);
+			fail_msg("step %ld: the node is out (winding number %g)", report_of(st).step, w);
 	}
-	print_message("icosahedron: %ld steps, %ld contacts\n", st.step, contacts);
-	assert_int_equal(st.step, 100000);
+	print_message("icosahedron: %ld steps, %ld contacts\n", report_of(st).step, contacts);
+	assert_int_equal(report_of(st).step, 100000);
 	assert_true(contacts > 10);
-	stepper_free(&st);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+/* The fail-safe on its own: a strip folded as an accordion into twelve
+ * layers a tenth of a spacing apart on the floor (consistent at step k),
+ * pressed down by 0.7 spacings in one step. The layers pass the impulses
+ * down to the floor and back, so the ccd passes reach the pass limit and
+ * from pass COLLIDE_FAILSAFE_PASS on contacts stick: what stuck is back at
+ * its step k position, no node gained speed (a stuck group moves at its
+ * mean velocity), nothing was left unresolved, no node is below the floor,
+ * and no vertex-face or edge-edge pair crosses over the corrected motion. */
+static void
+test_failsafe_jam(void **state)
+{
+	static const char text[] =
+	    "[simulation]\nduration = 1\ngravity = 0\n"
+	    "[cloth]\nnodes = 25 3\nspacing = 10 mm\norientation = +x +z\nweight = 150 g/m2\n"
+	    "thickness = 0.5 mm\nmodulus_warp = 0.45 MPa\nmodulus_weft = 0.3 MPa\n"
+	    "shear_modulus = 9 kPa\nbending_warp = 3 uN*m\nbending_weft = 2 uN*m\n"
+	    "[plane]\npoint = 0 0 0\n"
+	    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n";
+	struct scene sc;
+	struct network net;
+	struct collide c;
+	struct drape_err err;
+	const double dt = 1e-3, gap = 0.1, press = 0.7;
+	double *y0, *y1, vmax = 0;
+	size_t n3, i, e, f;
+	int v, k, frozen = 0;
+
+	(void)state;
+	parse_text(&sc, text);
+	if (network_build(&net, &sc, &err) != 0 ||
+	    collide_init(&c, &sc, &net.cl, net.pr.held, dt, 1, &err) != 0)
+		fail_msg("%s", err.msg);
+	n3 = 3 * (size_t)net.cl.n;
+	y0 = calloc(2 * n3, sizeof *y0);
+	y1 = calloc(2 * n3, sizeof *y1);
+	assert_true(y0 != NULL && y1 != NULL);
+	for (v = 0; v < net.cl.n; v++) {
+		int ci = v % net.cl.nu, cj = v / net.cl.nu, layer = ci / 2, along = ci % 2;
+		double h = net.cl.h, x = layer % 2 == 0 ? along * h : (2 - along) * h;
+
+		y0[3 * v] = y1[3 * v] = x;
+		y0[3 * v + 1] = (layer + 1) * gap * h;
+		y1[3 * v + 1] = y0[3 * v + 1] - press * h;
+		y0[3 * v + 2] = y1[3 * v + 2] = cj * h;
+	}
+	for (i = 0; i < n3; i++)
+		y1[n3 + i] = (y1[i] - y0[i]) / dt;
+	for (v = 0; v < net.cl.n; v++)
+		vmax = fmax(vmax, v3_len(v3_load(y1 + n3 + 3 * v)));
+	assert_int_equal(collide_step(&c, 0, dt, y0, y1, &err), 0);
+	print_message("jam: %ld passes, %ld nodes put back to step k, %ld corrections\n",
+	    c.st.n[STAT_PASSES], c.st.n[STAT_FROZEN], c.st.n[STAT_CORRECTIONS]);
+	assert_true(c.st.n[STAT_PASSES] > COLLIDE_FAILSAFE_PASS);
+	assert_true(c.st.n[STAT_FROZEN] > 0);
+	assert_int_equal(c.st.n[STAT_UNRESOLVED], 0);
+	for (v = 0; v < net.cl.n; v++) {
+		if (c.frozen[v]) {
+			frozen++;
+			for (k = 0; k < 3; k++)
+				assert_true(y1[3 * v + k] == y0[3 * v + k]);
+		}
+		assert_true(v3_len(v3_load(y1 + n3 + 3 * v)) <= vmax * (1 + 1e-12));
+		assert_true(y1[3 * v + 1] >= 0);
+	}
+	assert_int_equal(frozen, c.st.n[STAT_FROZEN]);
+	for (v = 0; v < net.cl.n; v++)
+		for (i = 0; i < net.cl.ntri; i++) {
+			const int *tn = net.cl.tri + 3 * i;
+			vec3 p0[4], p1[4];
+
+			if (tn[0] == v || tn[1] == v || tn[2] == v)
+				continue;
+			p0[0] = v3_load(y0 + 3 * v);
+			p1[0] = v3_load(y1 + 3 * v);
+			for (k = 0; k < 3; k++) {
+				p0[k + 1] = v3_load(y0 + 3 * tn[k]);
+				p1[k + 1] = v3_load(y1 + 3 * tn[k]);
+			}
+			if (ccd_vertex_face(p0, p1, 0, NULL))
+				fail_msg("node %d still crosses triangle %zu", v, i);
+		}
+	for (e = 0; e < net.cl.nedges; e++)
+		for (f = e + 1; f < net.cl.nedges; f++) {
+			const int *a = net.cl.edge + 2 * e, *b = net.cl.edge + 2 * f;
+			vec3 p0[4], p1[4];
+
+			if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1])
+				continue;
+			for (k = 0; k < 2; k++) {
+				p0[k] = v3_load(y0 + 3 * a[k]);
+				p1[k] = v3_load(y1 + 3 * a[k]);
+				p0[k + 2] = v3_load(y0 + 3 * b[k]);
+				p1[k + 2] = v3_load(y1 + 3 * b[k]);
+			}
+			if (ccd_edge_edge(p0, p1, 0, NULL))
+				fail_msg("edges %zu and %zu still cross", e, f);
+		}
+	free(y0);
+	free(y1);
+	collide_free(&c);
+	network_free(&net);
 	scene_free(&sc);
 }
 
@@ -359,6 +465,7 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_failsafe_jam),
 		cmocka_unit_test(test_icosahedron),
 		cmocka_unit_test(test_tablecloth_clean),
 		cmocka_unit_test(test_strip_clean),

@@ -1,7 +1,8 @@
 /* test_replay.c: replay files: the frame codec; a round trip (keyframes
  * bit for bit, frames within float32 rounding, the same events and
  * statistics); a small replay cut at every byte and with a bit flipped in
- * every chunk; resuming from every keyframe gives the original state hash;
+ * every chunk; resuming from every keyframe gives the original state hash,
+ * and a state or replay that does not match is refused;
  * and, through the binary: info, events --node, PC2 export, resume, a
  * SIGTERM mid-run, bad arguments, and the shipped replays. */
 #include <signal.h>
@@ -10,18 +11,22 @@
 #include "frame_codec.h"
 #include "record.h"
 #include "replay.h"
+#include "replay_run.h"
 #include "testutil.h"
 #include "runbin.h"
 
+/* A 4 x 4 cloth dropped onto the floor, and what it collides with. */
+#define TINY_CLOTH \
+    "[cloth]\nnodes = 4 4\nspacing = 10 mm\norigin = 0 3 0 mm\norientation = +x +z\n" \
+    "weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n" \
+    "modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n" \
+    "bending_weft = 2 uN*m\nvelocity = 0 -0.3 0 m/s\n" \
+    "[plane]\npoint = 0 0 0 m\n" \
+    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n"
+
 static const char tiny_scene[] =
     "# A 4 x 4 cloth dropped onto the floor: a small replay for the tests.\n"
-    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200\n"
-    "[cloth]\nnodes = 4 4\nspacing = 10 mm\norigin = 0 3 0 mm\norientation = +x +z\n"
-    "weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n"
-    "modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n"
-    "bending_weft = 2 uN*m\nvelocity = 0 -0.3 0 m/s\n"
-    "[plane]\npoint = 0 0 0 m\n"
-    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n";
+    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200\n" TINY_CLOTH;
 
 #define KEY_EVERY 40
 
@@ -44,50 +49,64 @@ path_in_dir(char *out, size_t len, const char *name)
 	snprintf(out, len, "%s/%s", dir, name);
 }
 
+/* The fast path on the same cloth: 60 steps of 5 ms, so that its keyframes
+ * are several and its contacts with the floor and itself many. */
+static const char tiny_fast_scene[] =
+    "[simulation]\nname = tiny-fast\nduration = 0.3 s\ndt = 5 ms\nintegrator = fast\n"
+    "output_rate = 200\n" TINY_CLOTH;
+
+static void record_text(struct truth *tr, const char *path, const char *text, int key_every);
+
 static void
 record_tiny(struct truth *tr, const char *path)
 {
+	record_text(tr, path, tiny_scene, KEY_EVERY);
+}
+
+static void
+record_text(struct truth *tr, const char *path, const char *text, int key_every)
+{
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
 	struct recorder rec;
 	struct drape_err err;
-	struct blowup bl;
+	struct step_failure bl;
 	size_t n6, cap = 0;
 
-	parse_text(&sc, tiny_scene);
-	init_stepper(&st, &sc);
+	parse_text(&sc, text);
+	st = new_stepper(&sc);
 	memset(tr, 0, sizeof *tr);
-	tr->n = st.cl.n;
-	n6 = 6 * (size_t)st.cl.n;
+	tr->n = cloth_of(st)->n;
+	n6 = 6 * (size_t)cloth_of(st)->n;
 	tr->y = malloc(n6 * sizeof *tr->y);
 	assert_non_null(tr->y);
-	memcpy(tr->y, st.y, n6 * sizeof *tr->y);
-	if (record_open(&rec, path, &st, KEY_EVERY, &err) != 0)
+	memcpy(tr->y, state_y(st), n6 * sizeof *tr->y);
+	if (record_open(&rec, path, st, key_every, &err) != 0)
 		fail_msg("record_open: %s", err.msg);
-	while (!stepper_done(&st)) {
-		if (stepper_step(&st, &bl) != 0)
+	while (!stepper_done(st)) {
+		if (stepper_step(st, &bl) != STEP_OK)
 			fail_msg("blow-up: %s", bl.why);
 		tr->nsteps++;
 		tr->y = realloc(tr->y, (size_t)(tr->nsteps + 1) * n6 * sizeof *tr->y);
 		tr->st = realloc(tr->st, (size_t)tr->nsteps * sizeof *tr->st);
 		assert_true(tr->y != NULL && tr->st != NULL);
-		memcpy(tr->y + (size_t)tr->nsteps * n6, st.y, n6 * sizeof *tr->y);
-		tr->st[tr->nsteps - 1] = st.col.st;
-		if (tr->nev + st.col.nev > cap) {
-			cap = 2 * (tr->nev + st.col.nev);
+		memcpy(tr->y + (size_t)tr->nsteps * n6, state_y(st), n6 * sizeof *tr->y);
+		tr->st[tr->nsteps - 1] = *report_of(st).last;
+		if (tr->nev + report_of(st).nev > cap) {
+			cap = 2 * (tr->nev + report_of(st).nev);
 			tr->ev = realloc(tr->ev, cap * sizeof *tr->ev);
 			assert_non_null(tr->ev);
 		}
-		if (st.col.nev > 0)
-			memcpy(tr->ev + tr->nev, st.col.ev, st.col.nev * sizeof *tr->ev);
-		tr->nev += st.col.nev;
-		if (record_step(&rec, &st, &err) != 0)
+		if (report_of(st).nev > 0)
+			memcpy(tr->ev + tr->nev, report_of(st).ev, report_of(st).nev * sizeof *tr->ev);
+		tr->nev += report_of(st).nev;
+		if (record_step(&rec, st, &err) != 0)
 			fail_msg("record_step: %s", err.msg);
 	}
-	if (record_close(&rec, &st, &err) != 0)
+	if (record_close(&rec, st, &err) != 0)
 		fail_msg("record_close: %s", err.msg);
-	tr->hash = stepper_hash(&st);
-	stepper_free(&st);
+	tr->hash = stepper_hash(st);
+	stepper_free(st);
 	scene_free(&sc);
 }
 
@@ -210,12 +229,9 @@ round_trip(void **state)
 				const struct collide_stats *a = &ss.s[j].col, *b = &tr.st[ss.s[j].step];
 
 				assert_int_equal(ss.s[j].step, steps);
-				assert_int_equal(a->narrow_tests, b->narrow_tests);
-				assert_int_equal(a->contacts[CONTACT_OBSTACLE], b->contacts[CONTACT_OBSTACLE]);
-				assert_int_equal(a->corrections, b->corrections);
-				assert_int_equal(a->passes, b->passes);
-				assert_int_equal(a->broad.vt_pairs, b->broad.vt_pairs);
-				assert_int_equal(a->broad.hash.cubes, b->broad.hash.cubes);
+				assert_memory_equal(a->n, b->n, sizeof a->n);
+				assert_memory_equal(&a->hash, &b->hash, sizeof a->hash);
+				assert_true(a->cell == b->cell);
 				steps++;
 			}
 			for (j = 0; j < ss.nev; j++)
@@ -364,46 +380,137 @@ bit_flips(void **state)
 
 /* The continued run from each keyframe ends with the recorded run's hash. */
 static void
-resume_every_keyframe(void **state)
+resume_every_keyframe_of(const char *text, int key_every)
 {
 	struct truth tr;
 	struct replay r;
 	struct drape_err err;
 	size_t i, tried = 0;
 
-	(void)state;
-	record_tiny(&tr, replay_path);
+	record_text(&tr, replay_path, text, key_every);
 	if (replay_open(&r, replay_path, &err) != 0)
 		fail_msg("%s", err.msg);
 	for (i = 0; i < r.nchunks; i++) {
 		struct replay_keyframe kf;
 		struct scene sc;
-		struct stepper st;
+		struct stepper *st;
 
 		if (r.chunk[i].kind != REPLAY_KEYFRAME)
 			continue;
 		if (replay_read_keyframe(&r, i, &kf, &err) != 0)
 			fail_msg("%s", err.msg);
-		if (scene_parse(&sc, r.meta.path, r.meta.text, &err) != 0)
+		if (replay_scene(&r, replay_path, 0, &sc, &err) != 0)
 			fail_msg("%s", err.msg);
-		sc.duration = r.meta.duration;
-		sc.dt = r.meta.dt;
-		sc.integrator = (enum integrator_kind)r.meta.integrator;
-		init_stepper(&st, &sc);
-		memcpy(st.y, kf.y, 6 * (size_t)st.cl.n * sizeof *st.y);
-		st.t = kf.t;
-		st.step = kf.step;
-		st.dt = kf.dt;
-		assert_true(stepper_hash(&st) == kf.hash);
-		run_to_end(&st);
-		assert_int_equal(st.step, tr.nsteps);
-		assert_true(stepper_hash(&st) == tr.hash);
-		stepper_free(&st);
+		if ((st = replay_resume(&r, replay_path, &sc, kf.step, &err)) == NULL)
+			fail_msg("%s", err.msg);
+		assert_int_equal(report_of(st).step, kf.step);
+		assert_true(stepper_hash(st) == kf.hash);
+		run_to_end(st);
+		assert_int_equal(report_of(st).step, tr.nsteps);
+		assert_true(stepper_hash(st) == tr.hash);
+		stepper_free(st);
 		scene_free(&sc);
 		replay_keyframe_free(&kf);
 		tried++;
 	}
 	assert_true(tried >= 3);
+	replay_close(&r);
+	truth_free(&tr);
+}
+
+static void
+resume_every_keyframe(void **state)
+{
+	(void)state;
+	resume_every_keyframe_of(tiny_scene, KEY_EVERY);
+}
+
+/* The fast path keeps nothing from one step to the next but the state
+ * (its contacts are found at each step's start), so it resumes exactly. */
+static void
+resume_every_keyframe_fast(void **state)
+{
+	(void)state;
+	resume_every_keyframe_of(tiny_fast_scene, 15);
+}
+
+/* What a restore checks: a saved state is taken only whole and only into
+ * its own run (stepper_restore: the node count, dt_set, the hash, and st
+ * untouched by a refusal), so a replay resumes only into the scene it was
+ * recorded with (replay_resume, through stepper_restore: the node count
+ * and dt_set, with the replay's name). */
+static void
+restore_checks(void **state)
+{
+	struct truth tr;
+	struct replay r;
+	struct scene sc;
+	struct stepper *st, *other;
+	struct stepper_state s;
+	struct drape_err err;
+	size_t n6;
+	uint64_t before;
+	double *y;
+
+	(void)state;
+	parse_text(&sc, tiny_scene);
+	st = new_stepper(&sc);
+	other = new_stepper(&sc);
+	step_n(st, 7);
+	n6 = 6 * (size_t)cloth_of(st)->n;
+	stepper_save(st, &s);
+	assert_int_equal(s.step, 7);
+	assert_true(s.hash == stepper_hash(st));
+	y = malloc(n6 * sizeof *y);
+	assert_non_null(y);
+	memcpy(y, s.y, n6 * sizeof *y);
+	s.y = y;
+	before = stepper_hash(other);
+
+	assert_true(s.nodes == (size_t)cloth_of(st)->n);
+	s.nodes++;	/* a state of another network */
+	assert_int_equal(stepper_restore(other, &s, &err), -1);
+	assert_non_null(strstr(err.msg, "nodes"));
+	assert_non_null(strstr(err.msg, "expected the recorded"));
+	s.nodes--;
+	s.dt_set *= 2;	/* a state of a run with another step */
+	assert_int_equal(stepper_restore(other, &s, &err), -1);
+	assert_non_null(strstr(err.msg, "expected the recorded"));
+	s.dt_set /= 2;
+	y[3] += 1e-9;	/* a state that is not the one hashed */
+	assert_int_equal(stepper_restore(other, &s, &err), -2);
+	assert_non_null(strstr(err.msg, "does not match its hash"));
+	assert_true(stepper_hash(other) == before);
+	assert_int_equal(report_of(other).step, 0);
+	y[3] -= 1e-9;
+	assert_int_equal(stepper_restore(other, &s, &err), 0);
+	assert_int_equal(report_of(other).step, 7);
+	assert_true(stepper_hash(other) == stepper_hash(st));
+	step_once(st);
+	step_once(other);
+	assert_true(stepper_hash(other) == stepper_hash(st));
+	free(y);
+	stepper_free(other);
+	stepper_free(st);
+	scene_free(&sc);
+
+	record_tiny(&tr, replay_path);
+	if (replay_open(&r, replay_path, &err) != 0)
+		fail_msg("%s", err.msg);
+	if (replay_scene(&r, replay_path, 0, &sc, &err) != 0)
+		fail_msg("%s", err.msg);
+	r.meta.dt_set *= 2;	/* recorded with another step */
+	assert_null(replay_resume(&r, replay_path, &sc, -1, &err));
+	assert_non_null(strstr(err.msg, "expected the recorded"));
+	r.meta.dt_set /= 2;
+	r.meta.nodes++;
+	assert_null(replay_resume(&r, replay_path, &sc, -1, &err));
+	assert_non_null(strstr(err.msg, "expected the recorded"));
+	r.meta.nodes--;
+	if ((st = replay_resume(&r, replay_path, &sc, -1, &err)) == NULL)
+		fail_msg("%s", err.msg);
+	stepper_free(st);
+	scene_free(&sc);
 	replay_close(&r);
 	truth_free(&tr);
 }
@@ -808,6 +915,8 @@ main(void)
 		cmocka_unit_test(cut_at_every_byte),
 		cmocka_unit_test(bit_flips),
 		cmocka_unit_test(resume_every_keyframe),
+		cmocka_unit_test(resume_every_keyframe_fast),
+		cmocka_unit_test(restore_checks),
 		cmocka_unit_test(cli_record_resume),
 		cmocka_unit_test(cli_events_node),
 		cmocka_unit_test(cli_pc2),

@@ -177,21 +177,21 @@ static void
 selectors_on_a_disc(void **state)
 {
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
 	struct drape_err err;
 
 	(void)state;
 	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = * 1\n");
-	init_stepper(&st, &sc);
-	assert_int_equal(st.pr.nnodes, 3);	/* (1..3, 1) */
-	stepper_free(&st);
+	st = new_stepper(&sc);
+	assert_int_equal(stepper_network(st)->pr.nnodes, 3);	/* (1..3, 1) */
+	stepper_free(st);
 	scene_free(&sc);
 	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = 0 *\n");
-	assert_int_not_equal(stepper_init(&st, &sc, &err), 0);
+	assert_null(stepper_new(&sc, &err));
 	assert_non_null(strstr(err.msg, "test.scene:14: nodes: the set has no node on the disc"));
 	scene_free(&sc);
 	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[load]\nnodes = 2 0\nforce = 0 1 0\n");
-	assert_int_not_equal(stepper_init(&st, &sc, &err), 0);
+	assert_null(stepper_new(&sc, &err));
 	assert_non_null(strstr(err.msg, "test.scene:14: nodes: the set has no node on the disc"));
 	scene_free(&sc);
 }
@@ -206,13 +206,11 @@ every_shipped_scene_parses(void **state)
 	for (i = 0; i < sizeof names / sizeof names[0]; i++) {
 		char path[512];
 		struct scene sc;
-		struct stepper st;
 
 		snprintf(path, sizeof path, SCENE_DIR "%s.scene", names[i]);
 		load_shipped(&sc, path);
 		assert_string_equal(sc.name, names[i]);
-		init_stepper(&st, &sc);
-		stepper_free(&st);
+		stepper_free(new_stepper(&sc));
 		scene_free(&sc);
 	}
 }

@@ -5,6 +5,7 @@
 #include "testutil.h"
 #include "evlog.h"
 #include "screen.h"
+#include "tui.h"
 
 static void
 layout_by_size(void **state)
@@ -91,7 +92,7 @@ static void
 status_and_panels(void **state)
 {
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
 	struct drape_err err;
 	struct source src;
 	struct source_live lv;
@@ -107,8 +108,8 @@ status_and_panels(void **state)
 
 	(void)state;
 	parse_text(&sc, SCENE_TEXT);
-	assert_int_equal(stepper_init(&st, &sc, &err), 0);
-	source_live(&src, &lv, &st);
+	assert_non_null(st = stepper_new(&sc, &err));
+	source_live(&src, &lv, st);
 	for (k = 0; k < 7; k++)
 		assert_int_equal(src.step(src.ctx, line, sizeof line), SOURCE_STEPPED);
 	src.state(src.ctx, &s);
@@ -153,12 +154,12 @@ status_and_panels(void **state)
 	assert_non_null(strstr(t.line[3], "not known"));
 	assert_non_null(strstr(t.line[6], "none yet"));
 	text_init(&t, 60);
-	screen_help(&t, false);
+	tui_help(&t, false);
 	assert_true(t.n > 10);
 
 	evlog_free(&log);
 	source_live_free(&lv);
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
 }
 

@@ -9,8 +9,10 @@
 
 #include "testutil.h"
 
+#include "record.h"
 #include "replay.h"
 #include "screen.h"
+#include "tui.h"
 #include "source.h"
 
 #define TABLECLOTH TOP_SRCDIR "/replays/tablecloth.drr"
@@ -149,7 +151,7 @@ events_stats_and_state(void **state)
 	assert_int_equal(nev, 0);
 	src.stats(src.ctx, &ss);
 	assert_true(ss.active);
-	assert_int_equal(ss.total->contacts[CONTACT_OBSTACLE], 0);
+	assert_int_equal(ss.total->n[STAT_CONTACTS + CONTACT_OBSTACLE], 0);
 
 	/* at step 1000, the events of step 999 (135 on the table) */
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1000));
@@ -158,8 +160,8 @@ events_stats_and_state(void **state)
 	for (k = 0; k < nev; k++)
 		assert_int_equal(ev[k].step, 999);
 	src.stats(src.ctx, &ss);
-	assert_int_equal(ss.step->contacts[CONTACT_OBSTACLE], 135);
-	assert_true(ss.total->contacts[CONTACT_OBSTACLE] > 135);
+	assert_int_equal(ss.step->n[STAT_CONTACTS + CONTACT_OBSTACLE], 135);
+	assert_true(ss.total->n[STAT_CONTACTS + CONTACT_OBSTACLE] > 135);
 	/* a keyframe: the exact state, and so the force */
 	src.state(src.ctx, &s);
 	assert_null(s.v_note);
@@ -217,7 +219,7 @@ screen_of_a_replay(void **state)
 	assert_non_null(strstr(t.line[2], "v~"));
 	assert_string_equal(t.line[4], "v: frame differences");
 	text_init(&t, 60);
-	screen_help(&t, true);
+	tui_help(&t, true);
 	assert_true(t.n > 10);
 	assert_true(t.n <= 24 - 1);	/* all of it at 80 x 24, under the top line */
 	evlog_free(&log);
@@ -328,7 +330,7 @@ static void
 live_run_records(void **state)
 {
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
 	struct drape_err err;
 	struct source live, src;
 	struct source_live lv;
@@ -341,8 +343,8 @@ live_run_records(void **state)
 	assert_true((fd = mkstemp(path)) >= 0);
 	close(fd);
 	load_shipped(&sc, SCENE_DIR "hanging.scene");
-	assert_int_equal(stepper_init(&st, &sc, &err), 0);
-	source_live(&live, &lv, &st);
+	assert_non_null(st = stepper_new(&sc, &err));
+	source_live(&live, &lv, st);
 	assert_null(live.seek);
 	assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
 	assert_null(live.recording(live.ctx, NULL));
@@ -357,7 +359,7 @@ live_run_records(void **state)
 	assert_null(live.recording(live.ctx, NULL));
 	assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
 	source_live_free(&lv);
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
 
 	if (source_replay_open(&src, &sr, path, &err) != 0)
@@ -372,6 +374,61 @@ live_run_records(void **state)
 	unlink(path);
 }
 
+/* The statistics a replay's viewer adds up from the recorded steps equal
+ * the live run's totals, counter for counter (and the hash's sums), on the
+ * tablecloth's first 0.15 s. */
+static void
+replay_totals_equal_live(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct recorder rec;
+	struct drape_err err;
+	struct collide_stats live;
+	struct source src;
+	struct source_replay sr;
+	struct source_stats ss;
+	char path[] = "/tmp/drape-totals-XXXXXX";
+	int fd, k;
+
+	(void)state;
+	assert_true((fd = mkstemp(path)) >= 0);
+	close(fd);
+	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
+	sc.duration = 0.15;
+	st = new_stepper(&sc);
+	if (record_open(&rec, path, st, 500, &err) != 0)
+		fail_msg("%s", err.msg);
+	while (!stepper_done(st)) {
+		step_once(st);
+		if (record_step(&rec, st, &err) != 0)
+			fail_msg("%s", err.msg);
+	}
+	if (record_close(&rec, st, &err) != 0)
+		fail_msg("%s", err.msg);
+	live = *report_of(st).total;
+	assert_true(live.n[STAT_CONTACTS + CONTACT_OBSTACLE] > 1000);
+	assert_true(live.n[STAT_FILLS] > 10);
+
+	if (source_replay_open(&src, &sr, path, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_true(src.seek(src.ctx, SOURCE_LAST, 0));
+	assert_int_equal(cursor(&src), report_of(st).step);
+	src.stats(src.ctx, &ss);
+	for (k = 0; k < STAT_COUNT; k++)
+		if (ss.total->n[k] != live.n[k])
+			fail_msg("%s: the replay's total is %ld, the live run's %ld",
+			    stat_field[k].name, ss.total->n[k], live.n[k]);
+	assert_memory_equal(&ss.total->hash, &live.hash, sizeof live.hash);
+	print_message("tablecloth 0.15 s: %ld steps, %ld corrections, %ld fills; the replay's "
+	    "totals are the live run's\n", report_of(st).step, live.n[STAT_CORRECTIONS],
+	    live.n[STAT_FILLS]);
+	source_replay_close(&sr);
+	stepper_free(st);
+	scene_free(&sc);
+	unlink(path);
+}
+
 int
 main(void)
 {
@@ -383,6 +440,7 @@ main(void)
 		cmocka_unit_test(damaged_chunk),
 		cmocka_unit_test(cut_file),
 		cmocka_unit_test(live_run_records),
+		cmocka_unit_test(replay_totals_equal_live),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -107,7 +107,7 @@ static void
 cantilever_with(enum integrator_kind integrator)
 {
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
 	struct energy e;
 	int clamp, tip;
 	double q, l, c_true, lam, chord, chord_ref, c_inferred, c_peirce, th;
@@ -116,25 +116,25 @@ cantilever_with(enum integrator_kind integrator)
 	sc.mat.modulus[0] /= 10;
 	sc.mat.modulus[1] /= 10;
 	sc.integrator = integrator;
-	init_stepper(&st, &sc);
-	run_to_end(&st);
-	stepper_energy(&st, &e);
+	st = new_stepper(&sc);
+	run_to_end(st);
+	stepper_energy(st, &e);
 	assert_true(e.kinetic < 1e-12);		/* at rest */
 
-	clamp = cloth_node(&st.cl, 1, 0);	/* the ledge's edge */
-	tip = cloth_node(&st.cl, st.cl.nu - 1, 0);
+	clamp = cloth_node(cloth_of(st), 1, 0);	/* the ledge's edge */
+	tip = cloth_node(cloth_of(st), cloth_of(st)->nu - 1, 0);
 	q = sc.mat.weight * v3_len(v3_load(sc.gravity));
-	l = (st.cl.nu - 2) * st.cl.h;
+	l = (cloth_of(st)->nu - 2) * cloth_of(st)->h;
 	c_true = cbrt(sc.mat.bending[0] / q);
 	lam = q * l * l * l / sc.mat.bending[0];
-	chord = atan2(stepper_x(&st)[3 * clamp + 1] - stepper_x(&st)[3 * tip + 1],
-	    stepper_x(&st)[3 * tip] - stepper_x(&st)[3 * clamp]) * DEG;
+	chord = atan2(stepper_x(st)[3 * clamp + 1] - stepper_x(st)[3 * tip + 1],
+	    stepper_x(st)[3 * tip] - stepper_x(st)[3 * clamp]) * DEG;
 	chord_ref = elastica_chord(lam);
 	c_inferred = l / cbrt(elastica_lambda(chord));
 	th = chord / DEG;
 	c_peirce = l * cbrt(cos(th / 2) / (8 * tan(th)));
 	print_message("cantilever (%s, %ld steps): l = %.1f mm, c = %.3f mm (l/c = %.3f)\n",
-	    integrator_name(integrator), st.step, l * 1e3, c_true * 1e3, l / c_true);
+	    integrator_name(integrator), report_of(st).step, l * 1e3, c_true * 1e3, l / c_true);
 	print_message("  chord angle %.3f deg, elastica %.3f deg: error %.3f deg\n", chord,
 	    chord_ref, chord - chord_ref);
 	print_message("  bending length from the droop %.3f mm: error %.3f %%\n", c_inferred * 1e3,
@@ -145,7 +145,7 @@ cantilever_with(enum integrator_kind integrator)
 	assert_double_equal(c_inferred / c_true, 1, 0.01);
 	assert_double_equal(l / c_true, 2, 0.01);	/* the scene is the ASTM case */
 	assert_double_equal(chord, 41.5, 0.5);
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
 }
 
@@ -164,19 +164,19 @@ static void
 catenary_with(enum integrator_kind integrator)
 {
 	struct scene sc;
-	struct stepper st;
+	struct stepper *st;
 	double span, length, arc = 0, lo = 1e-3, hi = 100, a, sag, sag_ref, top;
 	int i, mid;
 
 	load_shipped_with(&sc, SCENE_DIR "hanging.scene", "nodes = 41 3", "nodes = 41 2");
 	sc.integrator = integrator;
-	init_stepper(&st, &sc);
-	run_to_end(&st);
-	span = stepper_x(&st)[3 * cloth_node(&st.cl, st.cl.nu - 1, 0)] - stepper_x(&st)[0];
-	length = (st.cl.nu - 1) * st.cl.h;
-	for (i = 0; i + 1 < st.cl.nu; i++)
-		arc += v3_len(v3_sub(v3_load(stepper_x(&st) + 3 * (i + 1)),
-		    v3_load(stepper_x(&st) + 3 * i)));
+	st = new_stepper(&sc);
+	run_to_end(st);
+	span = stepper_x(st)[3 * cloth_node(cloth_of(st), cloth_of(st)->nu - 1, 0)] - stepper_x(st)[0];
+	length = (cloth_of(st)->nu - 1) * cloth_of(st)->h;
+	for (i = 0; i + 1 < cloth_of(st)->nu; i++)
+		arc += v3_len(v3_sub(v3_load(stepper_x(st) + 3 * (i + 1)),
+		    v3_load(stepper_x(st) + 3 * i)));
 	/* L = 2 a sinh(S / 2a): bisection on a (L/S falls as a grows) */
 	for (i = 0; i < 200; i++) {
 		a = sqrt(lo * hi);
@@ -187,22 +187,24 @@ catenary_with(enum integrator_kind integrator)
 	}
 	a = sqrt(lo * hi);
 	sag_ref = a * (cosh(span / (2 * a)) - 1);
-	mid = cloth_node(&st.cl, st.cl.nu / 2, 0);
-	top = stepper_x(&st)[1];
-	sag = top - stepper_x(&st)[3 * mid + 1];
+	mid = cloth_node(cloth_of(st), cloth_of(st)->nu / 2, 0);
+	top = stepper_x(st)[1];
+	sag = top - stepper_x(st)[3 * mid + 1];
 	print_message("catenary (%s, %ld steps): span %.4f m, length %.4f m (mean strain %.2e), "
-	    "a = %.4f m\n", integrator_name(integrator), st.step, span, length, arc / length - 1, a);
+	    "a = %.4f m\n", integrator_name(integrator), report_of(st).step, span, length, arc / length - 1, a);
 	print_message("  sag %.5f m, catenary %.5f m: error %.3f %%\n", sag, sag_ref,
 	    100 * (sag / sag_ref - 1));
 	assert_double_equal(span, 0.4, 1e-12);
 	assert_true(fabs(arc / length - 1) < 1e-3);	/* inextensible enough */
 	assert_double_equal(sag / sag_ref, 1, 0.01);
-	stepper_free(&st);
+	stepper_free(st);
 	scene_free(&sc);
 }
 
 static void hanging_strip_is_a_catenary(void **state) { (void)state; catenary_with(INTEG_RK4); }
 static void catenary_implicit(void **state) { (void)state; catenary_with(INTEG_IMPLICIT_EULER); }
+static void cantilever_fast(void **state) { (void)state; cantilever_with(INTEG_FAST); }
+static void catenary_fast(void **state) { (void)state; catenary_with(INTEG_FAST); }
 
 int
 main(void)
@@ -213,6 +215,8 @@ main(void)
 		cmocka_unit_test(hanging_strip_is_a_catenary),
 		cmocka_unit_test(cantilever_implicit),
 		cmocka_unit_test(catenary_implicit),
+		cmocka_unit_test(cantilever_fast),
+		cmocka_unit_test(catenary_fast),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -65,34 +65,90 @@ load_shipped_with(struct scene *sc, const char *path, const char *from, const ch
 		fail_msg("scene_parse: %s", err.msg);
 }
 
-static inline void
-init_stepper(struct stepper *st, const struct scene *sc)
+static inline struct stepper *
+new_stepper(const struct scene *sc)
 {
 	struct drape_err err;
+	struct stepper *st = stepper_new(sc, &err);
 
-	if (stepper_init(st, sc, &err) != 0)
-		fail_msg("stepper_init: %s", err.msg);
+	if (st == NULL)
+		fail_msg("stepper_new: %s", err.msg);
+	return st;
+}
+
+/* The run's report, as a value. */
+static inline struct stepper_report
+report_of(const struct stepper *st)
+{
+	struct stepper_report r;
+
+	stepper_report(st, &r);
+	return r;
+}
+
+/* The network's cloth. */
+static inline const struct cloth *
+cloth_of(const struct stepper *st)
+{
+	return &stepper_network(st)->cl;
+}
+
+/* The whole state: positions (3n) then velocities (3n). */
+static inline const double *
+state_y(const struct stepper *st)
+{
+	struct stepper_state s;
+
+	stepper_save(st, &s);
+	return s.y;
+}
+
+/* Puts a copy of st's state through edit(ctx, y, n) and st into it. */
+static inline void
+edit_state(struct stepper *st, void (*edit)(void *ctx, double *y, int n), void *ctx)
+{
+	struct stepper_state s;
+	struct drape_err err;
+	int n = cloth_of(st)->n;
+	double *y = malloc(6 * (size_t)n * sizeof *y);
+
+	assert_non_null(y);
+	stepper_save(st, &s);
+	memcpy(y, s.y, 6 * (size_t)n * sizeof *y);
+	edit(ctx, y, n);
+	s.y = y;
+	s.hash = stepper_state_hash(y, (size_t)n, s.t);
+	if (stepper_restore(st, &s, &err) != 0)
+		fail_msg("stepper_restore: %s", err.msg);
+	free(y);
+}
+
+/* One step; fails the test on a blow-up or an error. */
+static inline void
+step_once(struct stepper *st)
+{
+	struct step_failure f;
+	char msg[600];
+
+	if (stepper_step(st, &f) != STEP_OK) {
+		step_failure_format(&f, msg, sizeof msg);
+		fail_msg("%s", msg);
+	}
 }
 
 /* Runs to the scene's end; fails the test on a blow-up. */
 static inline void
 run_to_end(struct stepper *st)
 {
-	struct blowup bl;
-
 	while (!stepper_done(st))
-		if (stepper_step(st, &bl) != 0)
-			fail_msg("blow-up at step %ld node %d: %s", bl.step, bl.node, bl.why);
+		step_once(st);
 }
 
 static inline void
 step_n(struct stepper *st, long n)
 {
-	struct blowup bl;
-
 	while (n-- > 0)
-		if (stepper_step(st, &bl) != 0)
-			fail_msg("blow-up at step %ld node %d: %s", bl.step, bl.node, bl.why);
+		step_once(st);
 }
 
 #endif

@@ -6,12 +6,17 @@
 # replay: g goes to a step, the inspector lists a node's event of it, End,
 # Home, PgDn, the arrows; r records a live run, --record on a terminal
 # records from the start, each into a file drape info finds whole, q and
-# SIGTERM closing it.
+# SIGTERM closing it. A blow-up and an error (exit 3 and 1) each named so.
+# At 80 x 24: u cycles the glyphs, c the colouring, with its legend (the
+# scale and its numbers) at the foot of the view.
 # Skipped (77) without tmux. Waits poll the pane, with a timeout.
 set -u
 
 DRAPE=${DRAPE:-src/drape}
 command -v tmux >/dev/null 2>&1 || { echo "tmux not found: skipped"; exit 77; }
+# the panes' text is checked by byte columns: the ASCII view (the C locale),
+# except where a test asks for a UTF-8 one
+export LC_ALL=C
 
 tmp=$(mktemp -d /tmp/drape-tui-XXXXXX) || exit 1
 sock="drape-test-$$"
@@ -58,10 +63,10 @@ tm new-session -d -s keep -x 20 -y 5 "sleep 600" || { echo "tmux cannot start"; 
 fail() { echo "FAIL: $*"; echo "---- screen:"; cat "$tmp/screen"; echo "----"; fails=$((fails + 1)); }
 capture() { tm capture-pane -p -t t >"$tmp/screen"; }
 
-# wait_for REGEX: polls the pane for up to 15 s
+# wait_for REGEX: polls the pane for up to 30 s (CI machines may be loaded)
 wait_for() {
 	local i
-	for i in $(seq 150); do
+	for i in $(seq 300); do
 		capture
 		grep -Eq -- "$1" "$tmp/screen" && return 0
 		sleep 0.1
@@ -260,6 +265,136 @@ record_session() {
 record_session r
 record_session record
 record_session sigterm
+
+# a recording that meets a full disk (a file size limit, here): the TUI
+# says so and goes on; after q the message is on the terminal, exit 1
+echo "== recording onto a full disk"
+tm new-session -d -s t -x 120 -y 40 -c "$tmp/rec" "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "bash -c 'trap \"\" XFSZ; ulimit -f 64; exec $DRAPE run --paused --record full.drr $tmp/fall.scene'; echo EXIT=\$?" Enter
+	if wait_for 'recording into full.drr'; then
+		tm send-keys -t t ' '
+		wait_for 'recording stopped at step' &&
+			{ tm send-keys -t t q; wait_for 'EXIT=[0-9]+'; }
+		grep -q 'EXIT=1' "$tmp/screen" || fail "full disk: not exit 1"
+		grep -q '^drape: recording stopped at step' "$tmp/screen" ||
+			fail "full disk: no message after q"
+	fi
+	rm -f "$tmp"/rec/*.drr
+	tm kill-session -t t
+fi
+
+# a step that fails: a blow-up says "blown up" and exits 3, an error (the
+# spatial hash cannot cut the scene once a node is carried 1000 km in a
+# step; test_cli's broad_phase_error_exits_1) says "error" and exits 1, the
+# message on the terminal after q in both
+cat >"$tmp/stiff.scene" <<'SCENE'
+[simulation]
+duration = 1
+dt = 5 ms
+[cloth]
+nodes = 6 6
+spacing = 1 cm
+weight = 100 g/m2
+thickness = 0.3 mm
+modulus_warp = 30 MPa
+modulus_weft = 30 MPa
+shear_modulus = 0
+bending_warp = 0
+bending_weft = 0
+[pin]
+nodes = 0 0
+SCENE
+cat >"$tmp/cell.scene" <<'SCENE'
+[simulation]
+duration = 1 ms
+[cloth]
+nodes = 4 4
+spacing = 1 cm
+weight = 100 g/m2
+thickness = 0.3 mm
+modulus_warp = 0.3 MPa
+modulus_weft = 0.3 MPa
+shear_modulus = 0
+bending_warp = 0
+bending_weft = 0
+[move]
+nodes = 0 0
+velocity = 1e9 0 0 m/s
+[collision]
+self = on
+broad = seed
+narrow = seed
+cell = 1e-8 m
+SCENE
+failure_session() {
+	local scene=$1 mode=$2 code=$3 msg=$4
+	echo "== a step that fails: $mode"
+	tm new-session -d -s t -x 120 -y 40 "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "'$DRAPE' run '$tmp/$scene'; echo EXIT=\$?" Enter
+	wait_for "step [0-9]+ .*$mode" || return
+	tm send-keys -t t q
+	wait_for 'EXIT=[0-9]+' || return
+	grep -q "EXIT=$code" "$tmp/screen" || fail "$mode: not exit $code"
+	grep -Eq "^drape: .*$scene: $msg" "$tmp/screen" || fail "$mode: no message after q"
+	tm kill-session -t t
+}
+failure_session stiff.scene 'blown up' 3 'blow-up at step'
+failure_session cell.scene 'error' 1 'step 0 \(t = 0 s\): spatial hash'
+
+# the view's glyphs and colouring at 80 x 24: braille where the locale is
+# UTF-8 (u cycles to half blocks, then ASCII), c cycles the colouring with
+# colour, its legend at the foot of the view, and says it has none
+# without; in the C locale, ASCII only
+glyphs_session() {
+	local env=$1 flags=$2
+	echo "== glyphs and colouring ($env $flags)"
+	tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "env $env '$DRAPE' run --paused $flags '$tmp/fall.scene'; echo EXIT=\$?" Enter
+	wait_for '^\? help' || return
+	case "$env" in
+	*UTF-8*)
+		grep -q $'\xe2[\xa0-\xa3]' "$tmp/screen" || fail "no braille in a UTF-8 locale"
+		tm send-keys -t t u
+		wait_for 'view: half blocks' || return
+		grep -q $'\xe2\x96[\x80\x84\x88]' "$tmp/screen" || fail "no half blocks after u"
+		tm send-keys -t t u
+		wait_for 'view: ASCII' || return
+		grep -q $'\xe2' "$tmp/screen" && fail "Unicode left in the ASCII view"
+		tm send-keys -t t u ;;
+	*)
+		grep -q $'\xe2' "$tmp/screen" && fail "Unicode in the C locale"
+		tm send-keys -t t u
+		wait_for 'need a UTF-8 locale' || return ;;
+	esac
+	tm send-keys -t t c
+	case "$flags" in
+	*-C*) wait_for 'colouring needs a colour terminal' || return ;;
+	*) wait_for 'colour: largest strain' || return
+		# the legend at the foot of the view: the scale with its numbers
+		grep -Eq 'largest strain 0 +[0-9.]+% *\|' "$tmp/screen" || fail "no strain legend"
+		tm send-keys -t t c
+		wait_for 'warp strain -[0-9.]+% +\+[0-9.]+% *\|' || return
+		tm send-keys -t t c c c
+		wait_for 'colour: contact' || return
+		grep -Eq 'contact: +obstacle +cloth *\|' "$tmp/screen" || fail "no contact legend"
+		tm send-keys -t t c
+		wait_for 'colour: by what it is' || return
+		grep -Eq 'strain [-0-9.]+%|obstacle +cloth' "$tmp/screen" &&
+			fail "a legend left without a colouring" ;;
+	esac
+	tm send-keys -t t n
+	wait_for 'step 1 ' || return
+	tm send-keys -t t q
+	wait_for 'EXIT=[0-9]+' || return
+	grep -q 'EXIT=0' "$tmp/screen" || fail "drape did not exit with 0"
+	tm kill-session -t t
+}
+glyphs_session "LC_ALL=C.UTF-8" ""
+glyphs_session "LC_ALL=C.UTF-8" "-C"
+glyphs_session "LC_ALL=C" ""
 
 # not on a terminal
 "$DRAPE" run --until 1ms "$tmp/fall.scene" </dev/null >"$tmp/out" 2>"$tmp/err"

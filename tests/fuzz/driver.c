@@ -1,11 +1,16 @@
-/* driver.c: runs files through the fuzz target without libFuzzer: every
- * file of the seed corpus (or the files given), each whole and cut in
- * halves, so make check exercises the reader on them. */
+/* driver.c: runs files through a fuzz target without libFuzzer: every
+ * file of its seed corpus (tests/fuzz/FUZZ_CORPUS_DIR, or the files
+ * given), each whole and cut in halves, so make check exercises the
+ * target's code on them. */
 #include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#ifndef FUZZ_CORPUS_DIR
+#define FUZZ_CORPUS_DIR "corpus"
+#endif
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -41,7 +46,7 @@ run_file(const char *path)
 int
 main(int argc, char **argv)
 {
-	const char *corpus = TOP_SRCDIR "/tests/fuzz/corpus";
+	const char *corpus = TOP_SRCDIR "/tests/fuzz/" FUZZ_CORPUS_DIR;
 	char path[4096];
 	struct dirent *e;
 	DIR *d;

@@ -1,0 +1,36 @@
+/* collide_impl.h: what the collision stages share, inside the collide
+ * module only (collide.c runs a step; collide_geometry.c, collide_seed.c,
+ * collide_ccd.c and collide_obstacle.c are its stages). */
+#ifndef DRAPE_COLLIDE_IMPL_H
+#define DRAPE_COLLIDE_IMPL_H
+
+#include <math.h>
+
+#include "collide.h"
+
+static inline vec3 X0(const struct collide *c, int v) { return v3_load(c->x0 + 3 * v); }
+static inline vec3 X1(const struct collide *c, int v) { return v3_load(c->x1 + 3 * v); }
+static inline vec3 V1(const struct collide *c, int v) { return v3_load(c->v1 + 3 * v); }
+
+
+/* Keeps a corrected position inside the node's box of this step (its swept
+ * box, widened: see collide_step), so that the broad phase's pairs still
+ * cover it. */
+static inline vec3
+collide_clamp_box(const struct collide *c, int v, vec3 p)
+{
+	const double *b = c->box + 6 * v;
+
+	return v3(fmin(fmax(p.x, b[0]), b[3]), fmin(fmax(p.y, b[1]), b[4]),
+	    fmin(fmax(p.z, b[2]), b[5]));
+}
+
+/* The stages. Each returns 0, or -1 out of memory. */
+int collide_build_geometry(struct collide *c, const struct cloth *cl, const unsigned char *held);
+int collide_seed_pass(struct collide *c, long step, double dt, unsigned char *hit);
+int collide_ccd_passes(struct collide *c, long step, double dt);
+/* Node v against the analytic obstacles: 1 if one corrected it. ccd: the
+ * correction stays in the node's box of the step. */
+int collide_obstacles_node(struct collide *c, long step, double dt, int v, bool ccd);
+
+#endif

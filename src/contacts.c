@@ -1,0 +1,375 @@
+/* contacts.c: the fast path's contacts inside a step (see contacts.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contacts.h"
+#include "vec3.h"
+
+void
+contacts_init(struct contacts *ct, double thickness)
+{
+	memset(ct, 0, sizeof *ct);
+	ct->thickness = thickness;
+}
+
+void
+contacts_free(struct contacts *ct)
+{
+	free(ct->pair);
+	memset(ct, 0, sizeof *ct);
+}
+
+void
+contacts_clear(struct contacts *ct)
+{
+	ct->n = 0;
+}
+
+/* Where vertex v of col's geometry is: a cloth node's in x, a mesh's in
+ * col (they never move). */
+static vec3
+at(const struct collide *col, const double *x, int v)
+{
+	return v3_load(v < col->ncloth ? x + 3 * v : col->x0 + 3 * v);
+}
+
+/* The point of triangle abc nearest p, as barycentric weights (Ericson,
+ * Real-Time Collision Detection, 5.1.5). */
+static void
+closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, double w[3])
+{
+	vec3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a), bp, cp;
+	double d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap), d3, d4, d5, d6, va, vb, vc, den;
+
+	w[0] = 1;
+	w[1] = w[2] = 0;
+	if (d1 <= 0 && d2 <= 0)
+		return;
+	bp = v3_sub(p, b);
+	d3 = v3_dot(ab, bp);
+	d4 = v3_dot(ac, bp);
+	if (d3 >= 0 && d4 <= d3) {
+		w[0] = 0;
+		w[1] = 1;
+		return;
+	}
+	vc = d1 * d4 - d3 * d2;
+	if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+		double v = d1 / (d1 - d3);
+
+		w[0] = 1 - v;
+		w[1] = v;
+		return;
+	}
+	cp = v3_sub(p, c);
+	d5 = v3_dot(ab, cp);
+	d6 = v3_dot(ac, cp);
+	if (d6 >= 0 && d5 <= d6) {
+		w[0] = 0;
+		w[2] = 1;
+		return;
+	}
+	vb = d5 * d2 - d1 * d6;
+	if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+		double v = d2 / (d2 - d6);
+
+		w[0] = 1 - v;
+		w[2] = v;
+		return;
+	}
+	va = d3 * d6 - d5 * d4;
+	if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+		double v = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+
+		w[0] = 0;
+		w[1] = 1 - v;
+		w[2] = v;
+		return;
+	}
+	den = va + vb + vc;
+	if (!(den > 0) || !isfinite(den))	/* degenerate: the first vertex */
+		return;
+	w[1] = vb / den;
+	w[2] = vc / den;
+	w[0] = 1 - w[1] - w[2];
+}
+
+/* Closest points of segments p0-p1 and q0-q1: parameters s and u. */
+static void
+closest_on_segments(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
+{
+	vec3 d1 = v3_sub(p1, p0), d2 = v3_sub(q1, q0), r = v3_sub(p0, q0);
+	double a = v3_dot(d1, d1), e = v3_dot(d2, d2), f = v3_dot(d2, r);
+	double c = v3_dot(d1, r), b = v3_dot(d1, d2), den = a * e - b * b;
+
+	*s = den > 0 ? fmin(fmax((b * f - c * e) / den, 0), 1) : 0;
+	*u = e > 0 ? (b * *s + f) / e : 0;
+	if (*u < 0 || *u > 1) {
+		*u = fmin(fmax(*u, 0), 1);
+		*s = a > 0 ? fmin(fmax((b * *u - c) / a, 0), 1) : 0;
+	}
+}
+
+/* The pair's weights on its four vertices at positions x: the separation
+ * is sum w[k] x[k], from the second side to the first. */
+static void
+weights(const struct contact_pair *cp, const struct collide *col, const double *x, double w[4])
+{
+	vec3 p[4];
+	int k;
+
+	for (k = 0; k < 4; k++)
+		p[k] = at(col, x, cp->vert[k]);
+	if (cp->other >= 0) {	/* a vertex and a triangle */
+		double b[3];
+
+		closest_on_triangle(p[0], p[1], p[2], p[3], b);
+		w[0] = 1;
+		w[1] = -b[0];
+		w[2] = -b[1];
+		w[3] = -b[2];
+	} else {
+		double s, u;
+
+		closest_on_segments(p[0], p[1], p[2], p[3], &s, &u);
+		w[0] = 1 - s;
+		w[1] = s;
+		w[2] = -(1 - u);
+		w[3] = -u;
+	}
+}
+
+static vec3
+separation(const struct contact_pair *cp, const struct collide *col, const double *x,
+    const double w[4])
+{
+	vec3 d = v3(0, 0, 0);
+	int k;
+
+	for (k = 0; k < 4; k++)
+		d = v3_madd(d, at(col, x, cp->vert[k]), w[k]);
+	return d;
+}
+
+static int
+add_pair(struct contacts *ct, const struct contact_pair *cp)
+{
+	if (ct->n == ct->cap) {
+		size_t cap = ct->cap ? 2 * ct->cap : 256;
+		struct contact_pair *p = realloc(ct->pair, cap * sizeof *p);
+
+		if (p == NULL)
+			return -1;
+		ct->pair = p;
+		ct->cap = cap;
+	}
+	ct->pair[ct->n++] = *cp;
+	return 0;
+}
+
+/* Keeps the pair if it may come within the thickness during the step: its
+ * separation at the start, less one and a half times its predicted
+ * relative motion (an allowance for the step's accelerations), under a
+ * thickness and a quarter. */
+static int
+consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp,
+    const double *y0, double h)
+{
+	size_t n3 = 3 * (size_t)col->ncloth;
+	double w[4], dist, rel = 0;
+	vec3 d, disp[4];
+	int k, l;
+
+	weights(cp, col, y0, w);
+	d = separation(cp, col, y0, w);
+	dist = v3_len(d);
+	for (k = 0; k < 4; k++)
+		disp[k] = cp->vert[k] < col->ncloth ?
+		    v3_scale(v3_load(y0 + n3 + 3 * cp->vert[k]), h) : v3(0, 0, 0);
+	/* first side's vertices against the second's: the vertex against the
+	 * triangle's three, or edge against edge */
+	for (k = 0; k < (cp->other >= 0 ? 1 : 2); k++)
+		for (l = cp->other >= 0 ? 1 : 2; l < 4; l++)
+			rel = fmax(rel, v3_len(v3_sub(disp[k], disp[l])));
+	if (dist - 1.5 * rel >= 1.25 * ct->thickness)
+		return 0;
+	memcpy(cp->w, w, sizeof cp->w);
+	if (dist > 1e-12 * (1 + v3_len(at(col, y0, cp->vert[0])))) {
+		v3_store(cp->n0, v3_scale(d, 1 / dist));
+	} else {
+		/* touching already: against the relative motion */
+		vec3 rv = v3(0, 0, 0);
+
+		for (k = 0; k < 4; k++)
+			rv = v3_madd(rv, disp[k], w[k]);
+		v3_store(cp->n0, v3_len(rv) > 0 ? v3_scale(rv, -1 / v3_len(rv)) : v3(0, 1, 0));
+	}
+	cp->active = false;
+	{
+		vec3 rv = v3(0, 0, 0);
+
+		for (k = 0; k < 4; k++)
+			rv = v3_madd(rv, disp[k], w[k] / h);
+		cp->vn_before = v3_dot(rv, v3_load(cp->n0));
+	}
+	return add_pair(ct, cp);
+}
+
+/* A signal asks the run to stop: a fast cloth's millions of candidate
+ * pairs take a good part of a second to look at. */
+static bool
+stop_asked(const struct collide *col)
+{
+	return col->stop != NULL && *col->stop;
+}
+
+int
+contacts_find(struct contacts *ct, const struct collide *col, const double *y0, double h)
+{
+	const struct broad *br = &col->br;
+	size_t i;
+
+	ct->n = 0;
+	for (i = 0; i < br->nvt; i++) {
+		int v = br->vt[i].v, t = br->vt[i].t, obst = col->tri_obstacle[t];
+		struct contact_pair cp;
+
+		if ((i & 4095) == 0 && stop_asked(col))
+			return 1;
+		if (obst < 0 && v < col->ncloth && !col->opt.self)
+			continue;
+		if (v >= col->ncloth && obst >= 0)
+			continue;	/* both the meshes' */
+		if (v >= col->ncloth)
+			obst = col->tri_obstacle[col->vtri[col->vtri_start[v]]];
+		cp = (struct contact_pair){ .nv = 4, .vert = { v, col->tri[3 * t], col->tri[3 * t + 1],
+		    col->tri[3 * t + 2] }, .other = t, .obstacle = obst };
+		cp.mu = collide_friction(col, obst).mu;
+		if (consider(ct, col, &cp, y0, h) != 0)
+			return -1;
+	}
+	for (i = 0; i < br->nee; i++) {
+		const int *a = col->edge + 2 * br->ee[i].a, *b = col->edge + 2 * br->ee[i].b;
+		int obst = -1;
+		struct contact_pair cp;
+
+		if ((i & 4095) == 0 && stop_asked(col))
+			return 1;
+		if (b[0] >= col->ncloth)
+			obst = col->tri_obstacle[col->vtri[col->vtri_start[b[0]]]];
+		else if (a[0] >= col->ncloth)
+			obst = col->tri_obstacle[col->vtri[col->vtri_start[a[0]]]];
+		if (obst < 0 && !col->opt.self)
+			continue;
+		cp = (struct contact_pair){ .nv = 4, .vert = { a[0], a[1], b[0], b[1] },
+		    .other = -1 - br->ee[i].b, .obstacle = obst };
+		cp.mu = collide_friction(col, obst).mu;
+		if (consider(ct, col, &cp, y0, h) != 0)
+			return -1;
+	}
+	ct->found += (long)ct->n;
+	return 0;
+}
+
+/*
+ * A substep holds each pair on the plane it had at the step's start: the
+ * separation sum w x along n0, with the weights of its closest points then,
+ * kept at least a thickness. Planes fixed over the step make a projection
+ * a few products (the closest points are not sought again each substep);
+ * a contact that slides far enough to leave them is the step's check's.
+ */
+void
+contacts_project(struct contacts *ct, const struct collide *col, const double *w_node,
+    double *x, const double *xprev)
+{
+	size_t i;
+
+	for (i = 0; i < ct->n; i++) {
+		struct contact_pair *cp = &ct->pair[i];
+		const double *w = cp->w;
+		double im[4], den = 0, gap = 0, push, lam, slip, cut;
+		vec3 n = v3_load(cp->n0), rel = v3(0, 0, 0), tan, p[4];
+		int k;
+
+		for (k = 0; k < 4; k++) {
+			p[k] = at(col, x, cp->vert[k]);
+			gap += w[k] * v3_dot(n, p[k]);
+		}
+		if (gap >= ct->thickness)
+			continue;
+		for (k = 0; k < 4; k++) {
+			int v = cp->vert[k];
+
+			im[k] = v < col->ncloth ? w_node[v] : 0;
+			den += w[k] * w[k] * im[k];
+		}
+		if (!(den > 0))
+			continue;
+		push = ct->thickness - gap;
+		lam = push / den;
+		for (k = 0; k < 4; k++) {
+			int v = cp->vert[k];
+
+			if (im[k] == 0)
+				continue;
+			p[k] = v3_madd(p[k], n, w[k] * im[k] * lam);
+			v3_store(x + 3 * v, p[k]);
+		}
+		/* Coulomb: the sliding of the substep, held while under mu times
+		 * the push, else cut by that much */
+		if (cp->mu > 0) {
+			for (k = 0; k < 4; k++) {
+				int v = cp->vert[k];
+
+				if (v < col->ncloth)
+					rel = v3_madd(rel, v3_sub(p[k], v3_load(xprev + 3 * v)), w[k]);
+			}
+			tan = v3_madd(rel, n, -v3_dot(rel, n));
+			slip = v3_len(tan);
+			cut = cp->mu * push;
+			if (slip > 0) {
+				vec3 corr = v3_scale(tan, (slip <= cut ? 1 : cut / slip) / den);
+
+				for (k = 0; k < 4; k++)
+					if (im[k] > 0)
+						v3_store(x + 3 * cp->vert[k], v3_madd(p[k], corr, -w[k] * im[k]));
+			}
+		}
+		cp->active = true;
+	}
+}
+
+int
+contacts_events(struct contacts *ct, struct collide *col, long step, const double *y1)
+{
+	size_t n3 = 3 * (size_t)col->ncloth, i;
+
+	for (i = 0; i < ct->n; i++) {
+		const struct contact_pair *cp = &ct->pair[i];
+		double w[4];
+		vec3 d, n, q = v3(0, 0, 0), rv = v3(0, 0, 0);
+		bool tri = cp->other >= 0;
+		int k;
+
+		if (!cp->active)
+			continue;
+		weights(cp, col, y1, w);
+		d = separation(cp, col, y1, w);
+		n = v3_len(d) > 0 ? v3_scale(d, 1 / v3_len(d)) : v3_load(cp->n0);
+		for (k = 0; k < 4; k++) {
+			int v = cp->vert[k];
+
+			if (w[k] < 0)
+				q = v3_madd(q, at(col, y1, v), -w[k]);
+			if (v < col->ncloth)
+				rv = v3_madd(rv, v3_load(y1 + n3 + 3 * v), w[k]);
+		}
+		if (collide_add_event(col, step, cp->vert[0], tri ? CONTACT_NODE_FACE : CONTACT_EDGE_EDGE,
+		    tri ? cp->other : -1 - cp->other, cp->obstacle, q, n, cp->vn_before,
+		    v3_dot(rv, n)) != 0)
+			return -1;
+		ct->active++;
+	}
+	return 0;
+}

@@ -1,0 +1,291 @@
+/* pbd.c: substeps with the yarns solved along their lines (see pbd.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contacts.h"
+#include "obstacle.h"
+#include "pbd.h"
+#include "vec3.h"
+
+/* A node's clearance over an analytic obstacle, in cloth thicknesses: the
+ * substeps keep a node this far out, so that the step ends outside. */
+#define OBSTACLE_CLEARANCE 0.25
+
+/* The substep's h*omega_bound for the soft forces (see pbd_substep). */
+#define SUBSTEP_OMEGA 1.8
+
+/* The springs of one family in lines: along the warp (i, j)-(i+1, j), or
+ * the weft (i, j)-(i, j+1); a missing spring (the disc's rim) ends a line. */
+static int
+build_lines(struct pbd_lines *ln, const struct cloth *cl, bool warp)
+{
+	int *next = malloc(((size_t)cl->n + 1) * sizeof *next), p, outer, inner, a, b, k = 0, l = 0;
+	size_t s;
+
+	ln->start = malloc((cl->nsprings + 2) * sizeof *ln->start);
+	ln->spring = malloc((cl->nsprings + 1) * sizeof *ln->spring);
+	if (next == NULL || ln->start == NULL || ln->spring == NULL) {
+		free(next);
+		return -1;
+	}
+	for (p = 0; p < cl->n; p++)
+		next[p] = -1;
+	for (s = 0; s < cl->nsprings; s++) {
+		int ia, ja, ib, jb;
+
+		cloth_grid_ij(cl, cl->springs[s].a, &ia, &ja);
+		cloth_grid_ij(cl, cl->springs[s].b, &ib, &jb);
+		if ((ja == jb) == warp)
+			next[cl->springs[s].a] = (int)s;
+	}
+	outer = warp ? cl->nv : cl->nu;
+	inner = warp ? cl->nu : cl->nv;
+	for (a = 0; a < outer; a++) {
+		bool open = false;
+
+		for (b = 0; b < inner; b++) {
+			int q = warp ? cloth_node(cl, b, a) : cloth_node(cl, a, b);
+
+			if (q < 0 || next[q] < 0) {
+				open = false;
+				continue;
+			}
+			if (!open)
+				ln->start[l++] = k;
+			open = true;
+			ln->spring[k++] = next[q];
+		}
+	}
+	ln->start[l] = k;
+	ln->nlines = l;
+	free(next);
+	return 0;
+}
+
+static void
+free_lines(struct pbd_lines *ln)
+{
+	free(ln->start);
+	free(ln->spring);
+	memset(ln, 0, sizeof *ln);
+}
+
+double
+pbd_substep(const struct forces *fo, double dt)
+{
+	double omega = cloth_omega_bound_soft(fo->cl), damp = fo->damping;
+	/* symplectic Euler is stable for h*omega < 2 and a rate h*c < 2; the
+	 * Gershgorin bound is above the highest frequency at rest by a factor
+	 * of about 1.5 to 3, which leaves room for the stiffening of sheared
+	 * and bent elements (3/omega held on the tablecloth, 4/omega did not) */
+	double h = dt;
+
+	if (omega > 0 && SUBSTEP_OMEGA / omega < h)
+		h = SUBSTEP_OMEGA / omega;
+	if (damp > 0 && 1 / damp < h)
+		h = 1 / damp;
+	return h;
+}
+
+int
+pbd_init(struct pbd *pb, const struct scene *sc, const struct forces *fo,
+    const struct prescribed *pr, double dt)
+{
+	const struct cloth *cl = fo->cl;
+	size_t n3 = 3 * (size_t)cl->n, ns = cl->nsprings + 1;
+	int p;
+
+	memset(pb, 0, sizeof *pb);
+	pb->sc = sc;
+	pb->fo = fo;
+	pb->pr = pr;
+	pb->substep = pbd_substep(fo, dt);
+	pb->omega_bend = cloth_omega_bound_bend(cl);
+	if (build_lines(&pb->line[0], cl, true) != 0 || build_lines(&pb->line[1], cl, false) != 0 ||
+	    (pb->w = malloc(((size_t)cl->n + 1) * sizeof *pb->w)) == NULL ||
+	    (pb->a = malloc(n3 * sizeof *pb->a)) == NULL ||
+	    (pb->xprev = malloc(n3 * sizeof *pb->xprev)) == NULL ||
+	    (pb->xs = malloc(n3 * sizeof *pb->xs)) == NULL ||
+	    (pb->vs = malloc(n3 * sizeof *pb->vs)) == NULL ||
+	    (pb->diag = malloc(ns * sizeof *pb->diag)) == NULL ||
+	    (pb->off = malloc(ns * sizeof *pb->off)) == NULL ||
+	    (pb->rhs = malloc(ns * sizeof *pb->rhs)) == NULL ||
+	    (pb->dir = malloc(3 * ns * sizeof *pb->dir)) == NULL) {
+		pbd_free(pb);
+		return -1;
+	}
+	for (p = 0; p < cl->n; p++)
+		pb->w[p] = pr->held[p] || !(cl->mass[p] > 0) ? 0 : 1 / cl->mass[p];
+	return 0;
+}
+
+void
+pbd_free(struct pbd *pb)
+{
+	free_lines(&pb->line[0]);
+	free_lines(&pb->line[1]);
+	free(pb->w);
+	free(pb->a);
+	free(pb->xprev);
+	free(pb->xs);
+	free(pb->vs);
+	free(pb->diag);
+	free(pb->off);
+	free(pb->rhs);
+	free(pb->dir);
+	memset(pb, 0, sizeof *pb);
+}
+
+/*
+ * One family's lines, each solved at once. For line springs k = 0..m-1
+ * between nodes n_k and n_k+1, direction u_k and violation C_k, the XPBD
+ * update (lambda starts at 0 every substep) solves
+ *   (J W J' + a~/(1 + g)) dl = -(C + g J dx)/(1 + g),
+ * a~ = 1/(k h^2) the compliance, g = spring_damping/h the dashpot's share
+ * (Macklin et al. 2016, eq. 26, its rows divided by 1 + g so that the
+ * system stays symmetric), dx the motion since the substep began: J W J'
+ * is tridiagonal, w_a + w_b on the diagonal and -w(n_k+1) u_k.u_k+1 beside
+ * it. Then x += W J' dl.
+ */
+static void
+solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
+{
+	const struct cloth *cl = pb->fo->cl;
+	double g = pb->fo->spring_damping / h;
+	int l;
+
+	for (l = 0; l < ln->nlines; l++) {
+		int lo = ln->start[l], hi = ln->start[l + 1], k;
+
+		if ((l & 63) == 0 && forces_stopped(pb->fo))
+			return;		/* the step is dropped (pbd_step) */
+		if (hi == lo)
+			continue;
+		for (k = lo; k < hi; k++) {
+			const struct spring *sp = &cl->springs[ln->spring[k]];
+			vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
+			double len = v3_len(d), c;
+			vec3 u = len > 0 ? v3_scale(d, 1 / len) : v3(0, 0, 0);
+
+			v3_store(pb->dir + 3 * k, u);
+			c = len - sp->rest;
+			if (g > 0) {
+				vec3 dd = v3_sub(v3_sub(v3_load(x + 3 * sp->b), v3_load(pb->xprev + 3 * sp->b)),
+				    v3_sub(v3_load(x + 3 * sp->a), v3_load(pb->xprev + 3 * sp->a)));
+
+				c += g * v3_dot(u, dd);
+			}
+			pb->diag[k] = pb->w[sp->a] + pb->w[sp->b] + 1 / (sp->k * h * h * (1 + g));
+			pb->rhs[k] = -c / (1 + g);
+		}
+		/* consecutive springs share a node: the coupling */
+		for (k = lo; k + 1 < hi; k++)
+			pb->off[k] = -pb->w[cl->springs[ln->spring[k]].b] *
+			    v3_dot(v3_load(pb->dir + 3 * k), v3_load(pb->dir + 3 * (k + 1)));
+		/* Thomas: forward elimination, then back substitution */
+		for (k = lo + 1; k < hi; k++) {
+			double m = pb->off[k - 1] / pb->diag[k - 1];
+
+			pb->diag[k] -= m * pb->off[k - 1];
+			pb->rhs[k] -= m * pb->rhs[k - 1];
+		}
+		pb->rhs[hi - 1] /= pb->diag[hi - 1];
+		for (k = hi - 2; k >= lo; k--)
+			pb->rhs[k] = (pb->rhs[k] - pb->off[k] * pb->rhs[k + 1]) / pb->diag[k];
+		for (k = lo; k < hi; k++) {
+			const struct spring *sp = &cl->springs[ln->spring[k]];
+			vec3 du = v3_scale(v3_load(pb->dir + 3 * k), pb->rhs[k]);
+
+			v3_store(x + 3 * sp->a, v3_madd(v3_load(x + 3 * sp->a), du, -pb->w[sp->a]));
+			v3_store(x + 3 * sp->b, v3_madd(v3_load(x + 3 * sp->b), du, pb->w[sp->b]));
+		}
+	}
+}
+
+/* Nodes inside an analytic obstacle (or nearer than the clearance) back
+ * on it, their motion along it held by Coulomb friction: static while the
+ * tangential motion of the substep is under mu times the push out, else
+ * cut by that much. */
+static void
+obstacles(struct pbd *pb, double *x)
+{
+	const struct scene *sc = pb->sc;
+	const struct cloth *cl = pb->fo->cl;
+	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness;
+	size_t o;
+	int p;
+
+	for (o = 0; o < sc->nobstacles; o++) {
+		const struct obstacle *ob = &sc->obstacles[o];
+
+		if (ob->kind == OBSTACLE_MESH)
+			continue;
+		for (p = 0; p < cl->n; p++) {
+			vec3 xp = v3_load(x + 3 * p), q, n, dx, dt;
+			double d, push, slip;
+
+			if (pb->w[p] == 0 || (d = obstacle_distance(ob, xp, &q, &n)) >= clear)
+				continue;
+			push = clear - d;
+			xp = v3_madd(xp, n, push);
+			dx = v3_sub(xp, v3_load(pb->xprev + 3 * p));
+			dt = v3_madd(dx, n, -v3_dot(dx, n));
+			slip = v3_len(dt);
+			if (ob->friction > 0 && slip > 0) {
+				double cut = ob->friction * push;
+
+				xp = v3_madd(xp, dt, -(slip <= cut ? 1 : cut / slip));
+			}
+			v3_store(x + 3 * p, xp);
+		}
+	}
+}
+
+void
+pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, struct contacts *ct,
+    const struct collide *col)
+{
+	const struct cloth *cl = pb->fo->cl;
+	size_t n3 = 3 * (size_t)cl->n, i;
+	int nsub = (int)ceil(h / pb->substep * (1 - 1e-12)), s;
+	double hs, fold = 0;
+
+	if (nsub < 1)
+		nsub = 1;
+	hs = h / nsub;
+	/* the fold limiter: a hinge at most as stiff as the substep's bound
+	 * hs omega < SUBSTEP_OMEGA allows bending alone (the soft forces'
+	 * sum is within it at rest by Gershgorin's margin, pbd_substep) */
+	if (pb->omega_bend > 0) {
+		double share = pow(SUBSTEP_OMEGA / (hs * pb->omega_bend), 2);
+
+		fold = forces_fold_limit(fmax(share, 2));
+	}
+	memcpy(pb->xs, y, n3 * sizeof *pb->xs);
+	memcpy(pb->vs, y + n3, n3 * sizeof *pb->vs);
+	for (s = 0; s < nsub && !forces_stopped(pb->fo); s++) {
+		double ts = t + s * hs, te = s + 1 == nsub ? t + h : t + (s + 1) * hs;
+
+		forces_accel_soft(pb->fo, ts, pb->xs, pb->vs, pb->a, fold);
+		memcpy(pb->xprev, pb->xs, n3 * sizeof *pb->xs);
+		for (i = 0; i < n3; i++) {
+			if (pb->w[i / 3] == 0)
+				continue;
+			pb->vs[i] += hs * pb->a[i];
+			pb->xs[i] += hs * pb->vs[i];
+		}
+		prescribed_apply(pb->pr, cl, te, pb->xs, NULL);
+		solve_family(pb, &pb->line[0], hs, pb->xs);
+		solve_family(pb, &pb->line[1], hs, pb->xs);
+		if (ct != NULL)
+			contacts_project(ct, col, pb->w, pb->xs, pb->xprev);
+		obstacles(pb, pb->xs);
+		for (i = 0; i < n3; i++)
+			pb->vs[i] = (pb->xs[i] - pb->xprev[i]) / hs;
+		prescribed_apply(pb->pr, cl, te, NULL, pb->vs);
+		pb->substeps++;
+	}
+	memcpy(y_out, pb->xs, n3 * sizeof *y_out);
+	memcpy(y_out + n3, pb->vs, n3 * sizeof *y_out);
+}

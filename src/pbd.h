@@ -1,0 +1,88 @@
+/* pbd.h: the fast path's step (integrator = fast): substeps of position-
+ * based dynamics with the yarns' stretch solved exactly along each yarn.
+ *
+ * At a step of a frame the cloth's stretch springs are a thousand times
+ * stiffer than its inertia (h*omega of about 80 on cotton jersey), and
+ * every solver whose cost per iteration is a few force evaluations needs
+ * tens of iterations a step to resolve that (implicit Euler's CG: over a
+ * hundred at 10 ms with block Jacobi, 15-40 preconditioned along lines):
+ * the stiff springs couple the whole network, the soft forces do not.
+ * So the two are split, after Macklin et al. 2019 ("small steps"):
+ *   - the step is cut into substeps short enough for the soft forces
+ *     (shear, bending, gravity, loads, damping) to be taken explicitly,
+ *     v += h_s F_soft/m, x* = x + h_s v;
+ *   - the stretch springs are compliant constraints (XPBD, Macklin et al.
+ *     2016: C = |x_b - x_a| - l, compliance 1/k, which is backward Euler
+ *     of the spring energy), and instead of Gauss-Seidel over springs,
+ *     whose stiffness collapses to m/h_s^2 on a chain of nodes, each warp
+ *     line and then each weft line is solved at once: along a line the
+ *     system in the springs' multipliers is tridiagonal (consecutive
+ *     springs share a node), so one Thomas pass solves it exactly; across
+ *     lines the springs meet at right angles at rest and the coupling is
+ *     the shear angle's cosine, left to the alternation of the two
+ *     families (one each a substep);
+ *   - held nodes follow their prescribed motion; nodes inside an analytic
+ *     obstacle go back to its surface, with Coulomb friction;
+ *   - v = (x - x_prev)/h_s.
+ * A hinge's bending stiffness grows without bound as it folds right back
+ * (forces.c: as sec^4 of half its turning angle), which no explicit
+ * substep sized at rest can follow: a soft fabric (0.1 uN*m) piling on
+ * the floor blew up at 0.26 s. So the substep limits it (forces.h's fold
+ * limiter): a hinge is taken at most as stiff as the substep's stability
+ * bound allows bending alone, which bends the moment-angle curve flat past
+ * that fold (129 degrees on the shipped tablecloth, 157 with a bending of
+ * 0.1 uN*m) and leaves smaller angles exact.
+ * Statics are the model's: at rest the explicit forces are the soft
+ * energies' gradients and the line solves give each spring the tension
+ * whose elastic strain its compliance says. The substep is set by the
+ * soft forces' highest frequency, not the springs'. The step's contacts
+ * between parts of the cloth and with meshes are the collision stages'
+ * (collide.h), after the step, from its start and end states. */
+#ifndef DRAPE_PBD_H
+#define DRAPE_PBD_H
+
+#include <stdbool.h>
+
+#include "forces.h"
+#include "prescribed.h"
+#include "scene.h"
+
+struct pbd_lines {
+	int nlines;
+	int *start;		/* line l's springs are spring[start[l] .. start[l+1]) */
+	int *spring;		/* in order along the line */
+};
+
+struct pbd {
+	const struct scene *sc;
+	const struct forces *fo;
+	const struct prescribed *pr;
+	double substep;		/* s, the largest */
+	double omega_bend;	/* rad/s: the bending's own bound at rest */
+	struct pbd_lines line[2];	/* warp, weft */
+	double *w;		/* per node: 1/m, 0 when held */
+	double *a, *xprev, *xs, *vs;	/* 3n scratch */
+	double *diag, *off, *rhs, *dir;	/* per spring: the line system */
+	long substeps;		/* so far */
+};
+
+/* For a checked scene and its network; dt is the step. Returns 0, or -1
+ * out of memory. */
+int pbd_init(struct pbd *pb, const struct scene *sc, const struct forces *fo,
+    const struct prescribed *pr, double dt);
+void pbd_free(struct pbd *pb);
+
+/* The substep for a scene: half the explicit limit of its soft forces'
+ * highest frequency, at most dt. */
+double pbd_substep(const struct forces *fo, double dt);
+
+/* y (positions, velocities at t) to y_out at t + h; ct: the step's
+ * contacts between parts of the cloth and with meshes (col's geometry),
+ * held each substep, or NULL. Once the forces' stop flag is set
+ * (forces_set_stop) it returns early, y_out unfinished. */
+struct contacts;
+struct collide;
+void pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out,
+    struct contacts *ct, const struct collide *col);
+
+#endif

@@ -1,0 +1,735 @@
+/* test_hostile.c: hostile input through the real binary, one test per item
+ * of issue 13 that is not about the run loop: an OBJ that never ends
+ * (/dev/zero) or is not text, an output rate or a step out of range for
+ * the duration (in the scene and on the command line), a scene with UTF-8
+ * or a BOM given to snapshot, a replay killed early, the exits and
+ * messages drape(1) documents, scales and coordinates past the spatial
+ * hash, the setup of a large cloth shown on a terminal; and, where the
+ * binary cannot show it, the library: the wall-clock flush with a fake
+ * clock, the OBJ vertex bound, the frame count past a long, setup's
+ * stages. */
+#define _XOPEN_SOURCE 700	/* mknod, S_IFCHR */
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <time.h>
+#include <zlib.h>
+
+#include "clock.h"
+#include "mesh.h"
+#include "record.h"
+#include "replay.h"
+#include "testutil.h"
+#include "runbin.h"
+
+#define SIM "[simulation]\nduration = 10 ms\n"
+#define CLOTH "[cloth]\nnodes = 4 4\nspacing = 10 mm\nweight = 100 g/m2\n" \
+	"thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n" \
+	"bending_warp = 0\nbending_weft = 0\n"
+/* lines 1-2 [simulation], 3-12 [cloth], then what follows from line 13 */
+#define MESH(file) SIM CLOTH "[mesh]\nfile = " file "\n"
+
+static const char *
+write_file(const char *name, const void *data, size_t len)
+{
+	static char path[8][700];
+	static int k;
+	char *p = path[k++ % 8];
+	FILE *f;
+
+	snprintf(p, sizeof path[0], "%s/%s", dir, name);
+	f = fopen(p, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(data, 1, len, f), len);
+	assert_int_equal(fclose(f), 0);
+	return p;
+}
+
+static const char *
+write_text(const char *name, const char *text)
+{
+	return write_file(name, text, strlen(text));
+}
+
+/* "drape ARGS" where ARGS has one %s, the path of a file written from text. */
+static void
+drape_on(struct result *r, const char *fmt, const char *name, const char *text)
+{
+	char args[2000];
+
+	snprintf(args, sizeof args, fmt, write_text(name, text));
+	drape(r, args);
+}
+
+static void
+expect(const struct result *r, int status, const char *where, const char *what)
+{
+	if (r->status != status || (where != NULL && strstr(r->err, where) == NULL) ||
+	    strstr(r->err, what) == NULL)
+		fail_msg("status %d, stderr '%s'; expected %d and '%s' ... '%s'", r->status, r->err,
+		    status, where != NULL ? where : "", what);
+}
+
+static const char tri_obj[] = "v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 2 3\n";
+
+/* 3: [mesh] file = /dev/zero stops at once at its first line; a line too
+ * long, a file that is not text, a BOM each have their line. */
+static void
+obj_that_never_ends(void **state)
+{
+	struct result r;
+	char where[800], *big;
+	double t0;
+
+	(void)state;
+	t0 = clock_seconds();
+	drape_on(&r, "run --headless '%s'", "zero.scene", MESH("/dev/zero"));
+	expect(&r, 2, "zero.scene:14: file: /dev/zero:1: ",
+	    "expected text (a Wavefront OBJ file), found a NUL byte");
+	print_message("/dev/zero refused in %.3f s\n", clock_seconds() - t0);
+	/* a guard against the old hang (all memory, then a wrong message), not
+	 * a timing: at once is milliseconds, the hang took minutes */
+	assert_true(clock_seconds() - t0 < 60);
+	assert_string_equal(r.out, "");
+
+	assert_non_null(big = malloc(OBJ_MAX_LINE + 10));
+	memset(big, 'x', OBJ_MAX_LINE + 1);
+	memcpy(big, "v 0 0 0\n# ", 10);
+	big[OBJ_MAX_LINE + 9] = '\n';
+	write_file("long.obj", big, OBJ_MAX_LINE + 10);
+	free(big);
+	drape_on(&r, "run --headless '%s'", "long.scene", MESH("long.obj"));
+	snprintf(where, sizeof where, "long.scene:14: file: %s/long.obj:2: ", dir);
+	expect(&r, 2, where, "expected a line of at most 65536 bytes");
+
+	write_file("ctl.obj", "o x\n\x01\x02\x03\n# v 1 2 3\n", 18);
+	drape_on(&r, "run --headless '%s'", "ctl.scene", MESH("ctl.obj"));
+	expect(&r, 2, "ctl.obj: expected at least one face",
+	    "found none: it is not a text file (byte 0x01 on line 2)");
+
+	write_file("bin.obj", "\x7f" "ELF\x02\x01\x01\0\0\0", 10);
+	drape_on(&r, "run --headless '%s'", "bin.scene", MESH("bin.obj"));
+	expect(&r, 2, "bin.obj:1: ", "found a NUL byte");
+
+	write_text("bom.obj", "\xef\xbb\xbf" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+	drape_on(&r, "run --headless '%s'", "bom.scene", MESH("bom.obj"));
+	expect(&r, 2, "bom.obj:1: ", "byte order mark (EF BB BF)");
+
+	/* and check, which reads an OBJ itself */
+	snprintf(where, sizeof where, "check '%s/bom.obj'", dir);
+	drape(&r, where);
+	expect(&r, 2, "bom.obj:1: ", "byte order mark");
+}
+
+/* "drape ARGS" while a writer (a shell command) feeds the FIFO "endless"
+ * of dir, which the scene's [mesh] names: an OBJ that never ends, from
+ * text that /dev/zero's NUL bytes do not show. The writer dies of SIGPIPE
+ * when drape closes the FIFO. */
+static void
+drape_on_fifo(struct result *r, const char *writer)
+{
+	char cmd[2000], fifo[700];
+
+	snprintf(fifo, sizeof fifo, "%s/endless", dir);
+	(void)remove(fifo);
+	assert_int_equal(mkfifo(fifo, 0600), 0);
+	snprintf(cmd, sizeof cmd, "(%s) >'%s' 2>/dev/null &", writer, fifo);
+	assert_int_equal(system(cmd), 0);
+	drape_on(r, "run --headless '%s'", "endless.scene", MESH("endless"));
+}
+
+/* 3: text that never ends stops at the stated bounds, each at its line:
+ * comments at the file's 256 MiB, faces at 8M triangles (a second each
+ * here, in 100 MB). */
+static void
+obj_endless_text(void **state)
+{
+	struct result r;
+
+	(void)state;
+	drape_on_fifo(&r, "yes '# a comment that never ends'");
+	expect(&r, 2, "endless.scene:14: file: ", "/endless:9586981: expected a file of at most "
+	    "256 MiB");
+	drape_on_fifo(&r, "printf 'v 0 0 0\\nv 1 0 0\\nv 0 1 0\\n'; yes 'f 1 2 3'");
+	expect(&r, 2, "endless.scene:14: file: ", "/endless:8388612: expected at most 8388608 "
+	    "triangles");
+}
+
+/* 3: the vertex bound, through the reader (the file would be 33 MB). */
+static void
+obj_vertex_bound(void **state)
+{
+	size_t n = (size_t)OBJ_MAX_VERTICES + 1, i;
+	char *text = malloc(8 * n + 1);
+	struct mesh m;
+	struct drape_err err;
+	char where[64];
+	FILE *f;
+
+	(void)state;
+	assert_non_null(text);
+	for (i = 0; i < n; i++)
+		memcpy(text + 8 * i, "v 0 0 0\n", 8);
+	f = fmemopen(text, 8 * n, "r");
+	assert_non_null(f);
+	assert_int_equal(mesh_read_obj(&m, f, "many.obj", &err), -1);
+	fclose(f);
+	free(text);
+	snprintf(where, sizeof where, "many.obj:%zu: expected at most %d vertices", n,
+	    OBJ_MAX_VERTICES);
+	assert_string_equal(err.msg, where);
+	assert_null(m.x);
+}
+
+/* 4: output_rate = 1e300 is refused at its line, and so is an --until
+ * that makes too many frames; the recorder's frame count cannot overflow
+ * even when the scene is changed behind the parser's back. */
+static void
+output_rate_out_of_range(void **state)
+{
+	struct result r;
+	char args[1200];
+	struct scene sc;
+	struct stepper *st;
+	struct recorder rec;
+	struct replay rp;
+	struct drape_err err;
+	int k;
+
+	(void)state;
+	snprintf(args, sizeof args, "run --headless --record '%s/rate.drr' '%%s'", dir);
+	drape_on(&r, args, "rate.scene", SIM "output_rate = 1e300\n" CLOTH);
+	expect(&r, 2, "rate.scene:3: ", "output_rate: expected at most 1e+09 frames over the "
+	    "duration (0.01 s), so at most 1e+11 per second, got '1e300' (1e+298 frames)");
+	drape_on(&r, "run --headless --until 1e8 '%s'", "ok.scene", SIM "output_rate = 50\n"
+	    "dt = 1 ms\n" CLOTH);
+	expect(&r, 2, "drape run: --until 1e+08 s: ", "expected at most 1e+09 steps of 0.001 s");
+	drape_on(&r, "run --headless --until 1e8 --dt auto '%s'", "ok.scene",
+	    SIM "output_rate = 50\n" CLOTH);
+	expect(&r, 2, "drape run: --until 1e+08 s: ", "expected at most 1e+09 frames at the "
+	    "scene's output rate of 50 per second (it holds 5e+09)");
+
+	parse_text(&sc, SIM CLOTH);
+	sc.output_rate = 1e300;
+	st = new_stepper(&sc);
+	snprintf(args, sizeof args, "%s/huge-rate.drr", dir);
+	if (record_open(&rec, args, st, 4, &err) != 0)
+		fail_msg("%s", err.msg);
+	for (k = 0; k < 3; k++) {
+		step_once(st);
+		if (record_step(&rec, st, &err) != 0)
+			fail_msg("%s", err.msg);
+	}
+	if (record_close(&rec, st, &err) != 0)
+		fail_msg("%s", err.msg);
+	if (replay_open(&rp, args, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_true(rp.nframes >= 1);
+	replay_close(&rp);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+/* 7: a scene whose first bytes are not ASCII is a scene; a BOM gets a
+ * hint; a file under 8 bytes is neither; a replay given for a scene is
+ * named as one. */
+static void
+snapshot_tells_replays_by_magic(void **state)
+{
+	static const char *const heads[] = { "# a gap of 5 \xc2\xb5m\n", "# \xe2\x80\x94 \xc3\xa9\n" };
+	struct result plain, r;
+	char text[4096], args[1200];
+	size_t i;
+	int n;
+
+	(void)state;
+	drape_on(&plain, "snapshot --size 40x12 '%s'", "plain.scene", SIM CLOTH);
+	assert_int_equal(plain.status, 0);
+	for (i = 0; i < 2; i++) {
+		snprintf(text, sizeof text, "%s" SIM CLOTH, heads[i]);
+		drape_on(&r, "snapshot --size 40x12 '%s'", "utf8.scene", text);
+		if (r.status != 0)
+			fail_msg("%s: status %d, %s", heads[i], r.status, r.err);
+		assert_string_equal(r.out, plain.out);
+		drape_on(&r, "run --headless '%s'", "utf8.scene", text);
+		assert_int_equal(r.status, 0);
+	}
+	drape_on(&r, "snapshot '%s'", "bom.scene", "\xef\xbb\xbf" SIM CLOTH);
+	expect(&r, 2, "bom.scene:1: ", "found a UTF-8 byte order mark (EF BB BF) at the start: "
+	    "save the file as UTF-8 without BOM");
+	for (n = 0; n < 8; n++) {
+		write_file("short.drr", "DRAPERPL", (size_t)n);
+		snprintf(args, sizeof args, "snapshot '%s/short.drr'", dir);
+		drape(&r, args);
+		snprintf(text, sizeof text, "short.drr: %d bytes: expected a scene or a replay", n);
+		expect(&r, 2, NULL, text);
+	}
+	/* a replay where a scene belongs */
+	snprintf(args, sizeof args, "run --headless --record '%s/small.drr' '%%s'", dir);
+	drape_on(&r, args, "small.scene", SIM CLOTH);
+	assert_int_equal(r.status, 0);
+	snprintf(args, sizeof args, "check '%s/small.drr'", dir);
+	drape(&r, args);
+	expect(&r, 2, "small.drr:1: ", "expected a scene, found a drape replay");
+	snprintf(args, sizeof args, "run --headless '%s/small.drr'", dir);
+	drape(&r, args);
+	expect(&r, 2, "small.drr:1: ", "expected a scene, found a drape replay");
+	snprintf(args, sizeof args, "snapshot --size 20x5 '%s/small.drr'", dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+}
+
+/* 8: a step that would take more than 1e9 steps is refused, in the scene
+ * (given or auto) and on the command line, before anything runs. */
+static void
+step_too_small(void **state)
+{
+	struct result r;
+	double t0 = clock_seconds();
+
+	(void)state;
+	drape_on(&r, "run --headless '%s'", "dt.scene", SIM "dt = 1e-300 s\n" CLOTH);
+	expect(&r, 2, "dt.scene:3: ", "dt: expected a step that covers the duration (0.01 s) in "
+	    "at most 1e+09 steps, got '1e-300 s' (1e+298 steps)");
+	drape_on(&r, "run --headless --dt 1e-300 '%s'", "ok.scene", SIM CLOTH);
+	expect(&r, 2, "drape run: --dt 1e-300 s: ", "expected a step that covers the duration "
+	    "(0.01 s) in at most 1e+09 steps (it takes 1e+298)");
+	drape_on(&r, "run --headless --until 1e6 '%s'", "ok.scene", SIM "dt = 1 us\n"
+	    "output_rate = 1e-3\n" CLOTH);
+	expect(&r, 2, "drape run: --until 1e+06 s: ", "expected at most 1e+09 steps of 1e-06 s "
+	    "(it takes 1e+12)");
+	/* auto: a cloth so stiff that its stable step is 1e-12 s */
+	drape_on(&r, "run --headless '%s'", "stiff.scene", "[simulation]\nduration = 1 s\n"
+	    "dt = auto\n[cloth]\nnodes = 4 4\nspacing = 10 mm\nweight = 100 g/m2\n"
+	    "thickness = 0.3 mm\nmodulus_warp = 1e20\nmodulus_weft = 1e20\nshear_modulus = 0\n"
+	    "bending_warp = 0\nbending_weft = 0\n");
+	expect(&r, 2, "stiff.scene:3: ", "dt = auto: a step of");
+	assert_non_null(strstr(r.err, "steps to cover the duration (1 s); expected at most 1e+09"));
+	assert_string_equal(r.out, "");
+	print_message("four refusals in %.3f s\n", clock_seconds() - t0);
+}
+
+/* Offsets of the chunks of a replay, read back. */
+static size_t
+chunk_offsets(const unsigned char *buf, size_t len, uint32_t kind, uint64_t *off, size_t max)
+{
+	struct replay r;
+	struct drape_err err;
+	size_t i, n = 0;
+
+	if (replay_open_mem(&r, buf, len, &err) != 0)
+		fail_msg("%s", err.msg);
+	for (i = 0; i < r.nchunks && n < max; i++)
+		if (r.chunk[i].kind == kind)
+			off[n++] = r.chunk[i].offset;
+	replay_close(&r);
+	return n;
+}
+
+static unsigned char *
+read_whole(const char *path, size_t *len)
+{
+	FILE *f = fopen(path, "rb");
+	unsigned char *buf;
+	long n;
+
+	assert_non_null(f);
+	assert_int_equal(fseek(f, 0, SEEK_END), 0);
+	assert_true((n = ftell(f)) > 0);
+	rewind(f);
+	assert_non_null(buf = malloc((size_t)n));
+	assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
+	fclose(f);
+	*len = (size_t)n;
+	return buf;
+}
+
+/* 9: frames go out on wall time: with a fake clock, the pending frames
+ * are in the file once a second has passed, and only then. */
+static double fake_now;
+static double fake_clock(void) { return fake_now; }
+
+static void
+frames_flushed_on_wall_time(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct recorder rec;
+	struct replay rp;
+	struct drape_err err;
+	char path[700];
+	int k;
+
+	(void)state;
+	/* a frame every step */
+	parse_text(&sc, SIM "output_rate = 1e6\n" CLOTH);
+	st = new_stepper(&sc);
+	snprintf(path, sizeof path, "%s/clock.drr", dir);
+	if (record_open(&rec, path, st, 1000, &err) != 0)
+		fail_msg("%s", err.msg);
+	rec.w.clock = fake_clock;
+	fake_now = rec.w.last_flush = 100;
+	/* the first frame is out at once */
+	if (replay_open(&rp, path, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(rp.nframes, 1);
+	replay_close(&rp);
+	for (k = 1; k <= 10; k++) {
+		fake_now = 100 + 0.3 * k;	/* 0.3 s of wall time per step */
+		step_once(st);
+		if (record_step(&rec, st, &err) != 0)
+			fail_msg("%s", err.msg);
+		if (replay_open(&rp, path, &err) != 0)
+			fail_msg("%s", err.msg);
+		/* flushed at step k = 4 (1.2 s) and 8 (2.4 s), when the step is
+		 * written, before its frame: frames 0 .. k - 1 */
+		assert_int_equal(rp.nframes, k < 4 ? 1 : k < 8 ? 4 : 8);
+		assert_int_equal(rp.last_step, k < 4 ? -1 : k < 8 ? 3 : 7);
+		replay_close(&rp);
+	}
+	if (record_close(&rec, st, &err) != 0)
+		fail_msg("%s", err.msg);
+	if (replay_open(&rp, path, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(rp.nframes, 11);
+	replay_close(&rp);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+/* The frames in a replay being written, or -1 while it does not open. */
+static long
+frames_in(const char *path)
+{
+	struct replay r;
+	struct drape_err err;
+	long n;
+
+	if (replay_open(&r, path, &err) != 0)
+		return -1;
+	n = (long)r.nframes;
+	replay_close(&r);
+	return n;
+}
+
+/* 9: a run whose frames take seconds each to reach 25 (the tablecloth at
+ * 10 frames a second: a frame about every second of wall time, less under
+ * sanitizers), watched as it records: its frames reach the file in chunks
+ * of fewer than 25, on wall time; killed with SIGKILL, it keeps them, and
+ * they export. Polled rather than timed, so that a slow machine only
+ * makes it slower. */
+static void
+kill_9_keeps_frames(void **state)
+{
+	struct result r;
+	char args[2000], pid[64], path[700];
+	const char *at;
+	long frames = -1, seen = -1;
+	int k;
+
+	(void)state;
+	snprintf(path, sizeof path, "%s/killed.drr", dir);
+	snprintf(args, sizeof args, "'%s' run --headless --record '%s' '%s' >/dev/null 2>&1 & "
+	    "echo $! >'%s/pid'", DRAPE, path, write_text("slow-frames.scene",
+	    "[simulation]\nduration = 2 s\noutput_rate = 10\n[cloth]\nnodes = 25 25\n"
+	    "spacing = 10 mm\norigin = -0.12 0.15 -0.12 m\norientation = +x +z\n"
+	    "weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n"
+	    "modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n"
+	    "bending_weft = 2 uN*m\ndamping = 2 /s\n[box]\nmin = 0 0 -0.08 m\n"
+	    "max = 0.14 0.12 0.06 m\n[plane]\npoint = 0 0 0 m\n[collision]\nself = on\n"), dir);
+	assert_int_equal(system(args), 0);
+	/* up to 120 s for the second frame to be written */
+	for (k = 0; k < 1200 && (seen = frames_in(path)) < 2; k++)
+		nanosleep(&(struct timespec){ 0, 100000000 }, NULL);
+	snprintf(args, sizeof args, "%s/pid", dir);
+	slurp(args, pid, sizeof pid);
+	assert_int_equal(kill((pid_t)strtol(pid, NULL, 10), SIGKILL), 0);
+	print_message("frames first seen: %ld, after %.1f s\n", seen, 0.1 * k);
+	assert_true(seen >= 2 && seen < 25);
+	nanosleep(&(struct timespec){ 0, 200000000 }, NULL);
+	snprintf(args, sizeof args, "info '%s'", path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "not closed"));
+	assert_non_null(at = strstr(r.out, "frames       "));
+	frames = strtol(at + 13, NULL, 10);
+	print_message("killed: %ld frames kept\n", frames);
+	assert_true(frames >= seen);
+	snprintf(args, sizeof args, "export --obj '%s/killed.obj' '%s'", dir, path);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+}
+
+/* 10: export exits 2 on a replay with nothing it can export. */
+static void
+export_exits_2(void **state)
+{
+	struct result r;
+	char path[700], args[2000];
+	unsigned char *buf;
+	uint64_t off[4];
+	size_t len;
+	struct replay_chunk_header h;
+	uint32_t crc;
+
+	(void)state;
+	snprintf(args, sizeof args, "run --headless --record '%s/whole.drr' '%%s'", dir);
+	drape_on(&r, args, "whole.scene", SIM "output_rate = 1000\n" CLOTH);
+	assert_int_equal(r.status, 0);
+	snprintf(path, sizeof path, "%s/whole.drr", dir);
+	buf = read_whole(path, &len);
+	/* frame 0 at once, the others at the close (or on wall time) */
+	assert_true(chunk_offsets(buf, len, REPLAY_FRAMES, off, 4) >= 2);
+
+	/* cut before the first frames chunk: no frame at all */
+	write_file("noframe.drr", buf, (size_t)off[0]);
+	snprintf(args, sizeof args, "export --obj '%s/x.obj' '%s/noframe.drr'", dir, dir);
+	drape(&r, args);
+	expect(&r, 2, "noframe.drr: ", "no intact frame to export");
+
+	/* a frames chunk with a good CRC over bytes that do not inflate, after
+	 * one that exports: the PC2 begun is removed */
+	memcpy(&h, buf + off[1], sizeof h);
+	memset(buf + off[1] + sizeof h, 0xff, h.comp_len);
+	crc = (uint32_t)crc32(crc32(0, Z_NULL, 0), (const Bytef *)&h,
+	    offsetof(struct replay_chunk_header, crc));
+	h.crc = (uint32_t)crc32(crc, buf + off[1] + sizeof h, h.comp_len);
+	memcpy(buf + off[1], &h, sizeof h);
+	write_file("noinflate.drr", buf, len);
+	free(buf);
+	snprintf(args, sizeof args, "export --pc2 '%s/x.pc2' '%s/noinflate.drr'", dir, dir);
+	drape(&r, args);
+	expect(&r, 2, "noinflate.drr: ", "does not inflate");
+	snprintf(path, sizeof path, "%s/x.pc2", dir);
+	assert_int_equal(access(path, F_OK), -1);	/* nothing half-written */
+}
+
+/* 10: a NUL byte at its line; a 64-byte replay is cut, not damaged. */
+static void
+nul_line_and_cut_header(void **state)
+{
+	static const char text[] = "[simulation]\nduration = 1\n\n\n\n\n\nname = a\0b\n";
+	struct result r;
+	char args[1200];
+	unsigned char *buf;
+	size_t len;
+
+	(void)state;
+	snprintf(args, sizeof args, "run --headless '%s'", write_file("nul.scene", text,
+	    sizeof text - 1));
+	drape(&r, args);
+	expect(&r, 2, "nul.scene:8: ", "expected a text file, found a NUL byte");
+	snprintf(args, sizeof args, "check '%s/nul.scene'", dir);
+	drape(&r, args);
+	expect(&r, 2, "nul.scene:8: ", "found a NUL byte");
+
+	snprintf(args, sizeof args, "run --headless --record '%s/h.drr' '%%s'", dir);
+	drape_on(&r, args, "h.scene", SIM CLOTH);
+	assert_int_equal(r.status, 0);
+	snprintf(args, sizeof args, "%s/h.drr", dir);
+	buf = read_whole(args, &len);
+	write_file("h64.drr", buf, 64);
+	free(buf);
+	snprintf(args, sizeof args, "info '%s/h64.drr'", dir);
+	drape(&r, args);
+	expect(&r, 2, "h64.drr: ", "no intact scene chunk: the file was cut short after its "
+	    "64-byte header");
+}
+
+/* 10: scales and coordinates that would overflow the hash's arithmetic
+ * are refused at parse, not reported as out of memory. */
+static void
+scale_refused_at_parse(void **state)
+{
+	struct result r;
+	char text[2048];
+
+	(void)state;
+	write_text("tri.obj", tri_obj);
+	drape_on(&r, "run --headless '%s'", "scale.scene", MESH("tri.obj") "scale = 1e308\n");
+	expect(&r, 2, "scale.scene:15: ", "scale: the mesh reaches 1e+308 m from the origin "
+	    "along x (vertex 1); expected all of it within 1e+06 m");
+	drape_on(&r, "run --headless '%s'", "scale.scene", MESH("tri.obj") "scale = 1e5\n");
+	expect(&r, 2, "scale.scene:13: ", "with this mesh the cloth and the obstacles span "
+	    "2e+07 cubes of 0.01 m (the cloth's spacing) along x; expected at most 16777216 "
+	    "along an axis and 9.007e+15 in all (the spatial hash's bound)");
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9\n", SIM CLOTH);
+	drape_on(&r, "run --headless '%s'", "cell.scene", text);
+	expect(&r, 2, "cell.scene:15: ", "cell: the cloth spans 3e+07 cubes of 1e-09 m along x");
+	/* the modes that fill no hash are not held to its bound (collide_uses_hash) */
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9\nbroad = bvh\n",
+	    SIM CLOTH);
+	drape_on(&r, "run --headless '%s'", "cell.scene", text);
+	if (r.status != 0)
+		fail_msg("bvh: status %d: %s", r.status, r.err);
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9\nbroad = brute\n",
+	    SIM CLOTH);
+	drape_on(&r, "run --headless '%s'", "cell.scene", text);
+	if (r.status != 0)
+		fail_msg("brute: status %d: %s", r.status, r.err);
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-6\n", SIM
+	    "[cloth]\nnodes = 4096 1\nspacing = 1 m\norigin = -2000 0 -2000\n"
+	    "orientation = +x +y\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
+	    "bending_warp = 0\nbending_weft = 0\n");
+	drape_on(&r, "run --headless '%s'", "cell.scene", text);
+	expect(&r, 2, "cell.scene:17: ", "cell: the cloth spans 4.1e+09 cubes of 1e-06 m along x");
+	drape_on(&r, "run --headless '%s'", "far.scene", SIM CLOTH "origin = 0 2e6 0 m\n");
+	expect(&r, 2, "far.scene:13: ", "origin: expected coordinates of at most 1e+06 m either "
+	    "way, got '0 2e6 0 m'");
+	drape_on(&r, "run --headless '%s'", "far.scene", MESH("tri.obj") "offset = 0 -1e300 0\n");
+	expect(&r, 2, "far.scene:15: ", "offset: expected coordinates of at most 1e+06 m");
+	/* the same mesh at a sane scale runs */
+	drape_on(&r, "run --headless '%s'", "scale.scene", MESH("tri.obj") "scale = 0.5\n"
+	    "offset = 0 -0.1 0 m\n");
+	if (r.status != 0)
+		fail_msg("status %d: %s", r.status, r.err);
+}
+
+/* 11: on a terminal, the setup of 2^18 nodes or more says what it is
+ * doing (here through script(1)'s pseudo-terminal). */
+static void
+setup_progress_on_a_terminal(void **state)
+{
+	char args[2000], out[16384];
+	const char *scene;
+
+	(void)state;
+	if (system("script -qec true /dev/null >/dev/null 2>&1") != 0)
+		skip();
+	scene = write_text("large.scene", "[simulation]\nduration = 1 ms\n[cloth]\n"
+	    "nodes = 512 512\nspacing = 1 mm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\nbending_warp = 0\n"
+	    "bending_weft = 0\n");
+	snprintf(args, sizeof args, "script -qec \"'%s' snapshot --size 10x3 '%s'\" /dev/null "
+	    "</dev/null >'%s/tty.out' 2>&1", DRAPE, scene, dir);
+	assert_int_equal(system(args), 0);
+	snprintf(args, sizeof args, "%s/tty.out", dir);
+	slurp(args, out, sizeof out);
+	assert_non_null(strstr(out, "setting up 262144 nodes: the network"));
+	assert_non_null(strstr(out, "setting up 262144 nodes: the collision geometry"));
+	/* not on a terminal: nothing */
+	snprintf(args, sizeof args, "snapshot --size 10x3 '%s'", scene);
+	{
+		struct result r;
+
+		drape(&r, args);
+		assert_int_equal(r.status, 0);
+		assert_string_equal(r.err, "");
+	}
+}
+
+/* An output path that is not a regular file is written in place: a FIFO
+ * stays a FIFO and its reader gets the OBJ; a device (made here only when
+ * allowed: as root) stays a device when the write fails, as /dev/full
+ * does, and is not removed. Renamed over, or removed, /dev/null and
+ * /dev/full were lost to root's runs. */
+static void
+outputs_onto_devices_and_fifos(void **state)
+{
+	struct result r;
+	char fifo[700], dev[700], args[2000], out[16384];
+	struct stat sb;
+	int k, fd;
+
+	(void)state;
+	snprintf(fifo, sizeof fifo, "%s/fifo", dir);
+	assert_int_equal(mkfifo(fifo, 0600), 0);
+	snprintf(args, sizeof args, "cat '%s' > '%s.out' &", fifo, fifo);
+	assert_int_equal(system(args), 0);
+	snprintf(args, sizeof args, "run --headless --final-obj '%s' '%%s'", fifo);
+	drape_on(&r, args, "fifo.scene", SIM CLOTH);
+	assert_int_equal(r.status, 0);
+	assert_int_equal(stat(fifo, &sb), 0);
+	assert_true(S_ISFIFO(sb.st_mode));
+	/* cat finishes on its own time: polled (up to 60 s under load), not
+	 * a fixed wait, which a busy CI machine outlasted */
+	snprintf(args, sizeof args, "%s.out", fifo);
+	for (k = 0; k < 600; k++) {
+		slurp(args, out, sizeof out);
+		if (strstr(out, "# drape mesh: 16 vertices, 18 triangles") != NULL)
+			break;
+		nanosleep(&(struct timespec){ 0, 100000000 }, NULL);
+	}
+	assert_non_null(strstr(out, "# drape mesh: 16 vertices, 18 triangles"));
+
+	snprintf(dev, sizeof dev, "%s/full", dir);
+	if (mknod(dev, S_IFCHR | 0666, makedev(1, 7)) != 0) {
+		print_message("no device made (%s): the /dev/full case is not run\n",
+		    strerror(errno));
+		return;
+	}
+	/* a container may let root make the node and not open it (a device
+	 * cgroup): then there is no /dev/full to write onto */
+	if ((fd = open(dev, O_WRONLY)) < 0 || write(fd, "x", 1) != -1 || errno != ENOSPC) {
+		print_message("the device made does not act as /dev/full (%s): the case is "
+		    "not run\n", fd < 0 ? strerror(errno) : "a write did not fail with ENOSPC");
+		if (fd >= 0)
+			close(fd);
+		return;
+	}
+	close(fd);
+	snprintf(args, sizeof args, "run --headless --record '%s' --final-obj '%s' '%s/fifo.scene'",
+	    dev, dev, dir);
+	drape(&r, args);
+	expect(&r, 1, "full: write failed", "No space left on device");
+	assert_int_equal(stat(dev, &sb), 0);
+	assert_true(S_ISCHR(sb.st_mode));
+}
+
+struct stages {
+	char seen[200];
+};
+
+static void
+note_stage(void *ctx, const char *what)
+{
+	struct stages *s = ctx;
+
+	strncat(s->seen, what, sizeof s->seen - strlen(s->seen) - 2);
+	strcat(s->seen, ";");
+}
+
+/* 11: the stages, in order, from the library. */
+static void
+setup_stages(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct drape_err err;
+	struct stages s = { "" };
+	struct stepper_progress pg = { note_stage, &s };
+
+	(void)state;
+	parse_text(&sc, SIM CLOTH);
+	if ((st = stepper_new_progress(&sc, &pg, &err)) == NULL)
+		fail_msg("%s", err.msg);
+	assert_string_equal(s.seen, "the network;the integrator;the collision geometry;");
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(obj_that_never_ends),
+		cmocka_unit_test(obj_endless_text),
+		cmocka_unit_test(obj_vertex_bound),
+		cmocka_unit_test(output_rate_out_of_range),
+		cmocka_unit_test(snapshot_tells_replays_by_magic),
+		cmocka_unit_test(step_too_small),
+		cmocka_unit_test(frames_flushed_on_wall_time),
+		cmocka_unit_test(kill_9_keeps_frames),
+		cmocka_unit_test(export_exits_2),
+		cmocka_unit_test(nul_line_and_cut_header),
+		cmocka_unit_test(scale_refused_at_parse),
+		cmocka_unit_test(setup_progress_on_a_terminal),
+		cmocka_unit_test(setup_stages),
+		cmocka_unit_test(outputs_onto_devices_and_fifos),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}

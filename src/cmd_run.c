@@ -77,6 +77,7 @@ struct run_opts {
 struct run_end {
 	enum run_outcome outcome;
 	bool failed;
+	bool given_up;		/* a signal stopped a step half-way: it was dropped */
 	struct step_failure f;
 	double wall;
 };
@@ -433,8 +434,10 @@ step_headless(struct stepper *st, struct recorder *rec, bool tty, struct run_end
 	while (!stepper_done(st) && !interrupted) {
 		enum step_status s = stepper_step(st, f);
 
-		if (s == STEP_STOPPED)
+		if (s == STEP_STOPPED) {
+			end->given_up = true;
 			break;
+		}
 		if (s != STEP_OK) {
 			if (tty)
 				fputc('\n', stderr);
@@ -488,8 +491,10 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 		fputs("\r\033[K", stderr);
 	if (interrupted && rc == EXIT_OK) {
 		stepper_report(st, &r);
-		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)\n", signal_word(interrupted),
-		    r.step, r.t);
+		/* say whether a step was under way, so that a user (and test_cli,
+		 * without a clock) can tell it was given up, not finished */
+		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)%s\n", signal_word(interrupted),
+		    r.step, r.t, end->given_up ? "; the step under way was given up" : "");
 		rc = EXIT_INTERRUPTED;
 		end->outcome = RUN_INTERRUPTED;
 	}
@@ -547,7 +552,7 @@ int
 cmd_run(int argc, char **argv)
 {
 	struct run_opts o;
-	struct run_end end = { RUN_COMPLETED, false, { STEP_OK, 0, 0, -1, -1, -1, "" }, 0 };
+	struct run_end end = { RUN_COMPLETED, false, false, { STEP_OK, 0, 0, -1, -1, -1, "" }, 0 };
 	struct scene sc;
 	struct stepper *st;
 	int rc;

@@ -565,13 +565,12 @@ drape_signalled(struct result *r, const char *args, int sig, double delay)
  * sent at another moment of the shipped tablecloth's steps, thrown at
  * 300 m/s (a third of a second a step here: its broad phase sorts 1.5
  * million pairs and its ccd passes test 2.3 million), and with the fast
- * integrator (which looks at as many pairs for its contacts): it stops
- * within 0.1 s, or within a tenth of a step where a step is slower than a
- * second (under the sanitizers, or a loaded machine), and its replay is
- * closed. Waiting for the step's end took up to 0.15 s (the sort of the
- * pairs did not look at the flag), and 0.2 s with the fast integrator (nor
- * did its search for contacts); before the flag was polled within a step,
- * the whole step. */
+ * integrator (which looks at as many pairs for its contacts): the run
+ * says that it gave up the step under way, and its replay is closed.
+ * Before the flag was polled within a step, the step was finished first
+ * and no step was given up. No clock is asserted (the time to stop is
+ * printed): a signal that fell between two steps, a few microseconds
+ * against a third of a second, would fail this. */
 static void
 signals_within_a_step(void **state)
 {
@@ -587,10 +586,8 @@ signals_within_a_step(void **state)
 		{ SIGTERM, 2.9, "terminated", "--integrator fast" },
 	};
 	char args[2000];
-	const char *at = NULL;
 	struct result r, info;
-	double took, step_wall, bound;
-	long steps;
+	double took;
 	size_t i;
 
 	(void)state;
@@ -599,20 +596,13 @@ signals_within_a_step(void **state)
 		    "--set 'cloth.velocity=300 300 300 m/s' '%s/scenes/tablecloth.scene'",
 		    sigs[i].opt, dir, TOP_SRCDIR);
 		took = drape_signalled(&r, args, sigs[i].sig, sigs[i].delay);
+		print_message("%s%s%s after %.1f s: stopped in %.3f s\n", sigs[i].word,
+		    *sigs[i].opt ? ", " : "", sigs[i].opt, sigs[i].delay, took);
 		if (r.status != 130 || strstr(r.err, sigs[i].word) == NULL ||
-		    (at = strstr(r.err, " at step ")) == NULL)
-			fail_msg("%s: status %d, stderr '%s'", sigs[i].word, r.status, r.err);
-		steps = strtol(at + 9, NULL, 10);
-		/* at most the wall time of a step: setup, the steps done and a
-		 * part of the next over one more step */
-		step_wall = sigs[i].delay / (double)(steps + 1);
-		bound = step_wall / 10 > 0.1 ? step_wall / 10 : 0.1;
-		print_message("%s%s%s after %.1f s (step %ld, about %.2f s a step): stopped in "
-		    "%.3f s\n", sigs[i].word, *sigs[i].opt ? ", " : "", sigs[i].opt, sigs[i].delay,
-		    steps, step_wall, took);
-		if (took > bound)
-			fail_msg("%s: stopped in %.3f s; expected at most %.3f s", sigs[i].word, took,
-			    bound);
+		    strstr(r.err, " at step ") == NULL ||
+		    strstr(r.err, "; the step under way was given up") == NULL)
+			fail_msg("%s: status %d, stderr '%s'; expected 130 and the step under way "
+			    "given up", sigs[i].word, r.status, r.err);
 		snprintf(args, sizeof args, "info '%s/sig.drr'", dir);
 		drape(&info, args);
 		assert_int_equal(info.status, 0);
@@ -623,13 +613,12 @@ signals_within_a_step(void **state)
 /* Issue 13: a large cloth with nothing to collide with spends its step in
  * the forces, the Jacobian and the substeps, which look at the signal
  * flag too: 768 x 768 nodes take about a second a step here (implicit
- * Euler; the fast path's step is many substeps), and each method stops
- * within a quarter of one or 0.15 s (the exit's teardown of 600 k nodes
- * counted in), where it used to finish the step. */
+ * Euler; the fast path's step is many substeps), and each method gives up
+ * the step under way, where it used to finish it. (RK4's steps here are
+ * a few force evaluations, 0.3 s in all.) */
 static void
 signals_within_a_large_step(void **state)
 {
-	/* (RK4's steps here are a few force evaluations, 0.3 s in all) */
 	static const char *const methods[] = { "implicit-euler", "fast" };
 	char args[2000];
 	const char *path = write_scene("large.scene", "[simulation]\nduration = 10 s\n"
@@ -641,22 +630,15 @@ signals_within_a_large_step(void **state)
 
 	(void)state;
 	for (i = 0; i < sizeof methods / sizeof methods[0]; i++) {
-		const char *at = NULL;
-		double took, step_wall, delay = 4;
-		long steps;
+		double took;
 
 		snprintf(args, sizeof args, "run --headless --integrator %s '%s'", methods[i], path);
-		took = drape_signalled(&r, args, SIGINT, delay);
-		if (r.status != 130 || (at = strstr(r.err, "interrupted at step ")) == NULL)
-			fail_msg("%s: status %d, stderr '%s'", methods[i], r.status, r.err);
-		steps = strtol(at + 20, NULL, 10);
-		/* an upper bound on a step's wall time: setup counted in */
-		step_wall = delay / (double)(steps + 1);
-		print_message("%s, 768 x 768: stopped in %.3f s (step %ld, at most %.2f s a step)\n",
-		    methods[i], took, steps, step_wall);
-		if (took > 0.15 && took > step_wall / 4)
-			fail_msg("%s: stopped in %.3f s; expected at most a quarter of a step (%.3f s)",
-			    methods[i], took, step_wall / 4);
+		took = drape_signalled(&r, args, SIGINT, 4);
+		print_message("%s, 768 x 768: stopped in %.3f s\n", methods[i], took);
+		if (r.status != 130 || strstr(r.err, "interrupted at step ") == NULL ||
+		    strstr(r.err, "; the step under way was given up") == NULL)
+			fail_msg("%s: status %d, stderr '%s'; expected 130 and the step under way "
+			    "given up", methods[i], r.status, r.err);
 	}
 }
 

@@ -51,7 +51,7 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 	int rc = EXIT_RUNTIME;
 
 	for (i = 0; i < r->nchunks; i++) {
-		if (r->chunk[i].kind != REPLAY_FRAMES)
+		if (!replay_is_frames(r->chunk[i].kind))
 			continue;
 		if (replay_read_frames(r, i, &fr, err) != 0) {
 			rc = EXIT_USAGE;

@@ -32,16 +32,36 @@ count_events(const struct replay *r, long *nev, double *t_end, size_t *unreadabl
 	}
 }
 
+/* The grid step of the first lossy frames chunk that reads, or 0: a
+ * recording has one --precision for all its chunks (those that did not
+ * fit the grid are exact). */
+static double
+lossy_precision(const struct replay *r)
+{
+	struct replay_frames fr;
+	struct drape_err err;
+	size_t i;
+
+	for (i = 0; i < r->nchunks; i++)
+		if (r->chunk[i].kind == REPLAY_FRAMES_Q && replay_read_frames(r, i, &fr, &err) == 0) {
+			double p = fr.precision;
+
+			replay_frames_free(&fr);
+			return p;
+		}
+	return 0;
+}
+
 int
 cmd_info(int argc, char **argv)
 {
 	struct replay r;
 	struct drape_err err;
 	const struct replay_meta *m;
-	uint64_t bytes[REPLAY_INDEX + 1] = { 0 };
+	uint64_t bytes[REPLAY_KIND_MAX + 1] = { 0 }, frame_bytes;
 	size_t i, unreadable;
 	long nev;
-	double t_end, node_frames;
+	double t_end, node_frames, precision;
 
 	if (argc == 2 && strcmp(argv[1], "--help") == 0) {
 		usage(stdout);
@@ -58,10 +78,12 @@ cmd_info(int argc, char **argv)
 	}
 	m = &r.meta;
 	for (i = 0; i < r.nchunks; i++)
-		if (r.chunk[i].kind <= REPLAY_INDEX)
+		if (r.chunk[i].kind <= REPLAY_KIND_MAX)
 			bytes[r.chunk[i].kind] += sizeof(struct replay_chunk_header) +
 			    r.chunk[i].comp_len;
 	count_events(&r, &nev, &t_end, &unreadable);
+	frame_bytes = bytes[REPLAY_FRAMES] + bytes[REPLAY_FRAMES_Q];
+	precision = lossy_precision(&r);
 	node_frames = (double)m->nodes * (double)(r.nframes > 0 ? r.nframes : 1);
 
 	printf("replay       %s (version %u, %s)\n", argv[1], r.hdr.version,
@@ -77,17 +99,20 @@ cmd_info(int argc, char **argv)
 	else
 		printf("%.9g\n", m->dt);
 	printf("steps        %ld\n", r.last_step + 1);
-	printf("frames       %zu at %.9g per second\n", r.nframes, m->output_rate);
+	printf("frames       %zu at %.9g per second", r.nframes, m->output_rate);
+	if (precision > 0)
+		printf(", rounded to %.9g m (within %.9g m of the run)", precision, precision / 2);
+	printf("\n");
 	printf("keyframes    %zu (every %ld steps)\n", r.nkeyframes, m->keyframe_every);
 	printf("events       %ld\n", nev);
 	printf("simulated    %.9g s\n", t_end);
 	printf("file size    %" PRIu64 " bytes: scene %" PRIu64 ", frames %" PRIu64 ", keyframes %"
 	    PRIu64 ", steps (statistics and events) %" PRIu64 ", index %" PRIu64 "\n", r.len,
-	    bytes[REPLAY_META], bytes[REPLAY_FRAMES], bytes[REPLAY_KEYFRAME], bytes[REPLAY_STEPS],
+	    bytes[REPLAY_META], frame_bytes, bytes[REPLAY_KEYFRAME], bytes[REPLAY_STEPS],
 	    bytes[REPLAY_INDEX]);
 	printf("bytes/node/frame %.3f in all, %.3f for the frames alone, %.3f without the steps "
 	    "chunks (raw float32: 12)\n", (double)r.len / node_frames,
-	    (double)bytes[REPLAY_FRAMES] / node_frames,
+	    (double)frame_bytes / node_frames,
 	    (double)(r.len - bytes[REPLAY_STEPS]) / node_frames);
 	printf("integrity    ");
 	if (r.nbad == 0 && !r.cut && unreadable == 0)

@@ -68,6 +68,7 @@ struct run_opts {
 	bool headless;
 	struct tui_opts tui;
 	long keyframe_every;	/* 0: the default */
+	double precision;	/* of recorded frames, m; 0: exact */
 	const char **sets;	/* --set, in order (room for argc of them) */
 	size_t nsets;
 	enum run_format summary;
@@ -149,6 +150,13 @@ take_option(struct run_opts *o, int c, const char *arg)
 		if (errno != 0 || end == arg || *end != '\0' || o->keyframe_every < 1)
 			return bad_option("--keyframe-every", arg, "a whole number of steps from 1");
 		break;
+	case 'P':
+		/* a grid step under a nanometre would not fit a frame's
+		 * coordinates in 32 bits anyway (replay.c writes those exact) */
+		if (units_parse(arg, DIM_LENGTH, &o->precision, 1, why, sizeof why) != 0 ||
+		    !(o->precision >= 1e-9) || !(o->precision <= 1))
+			return bad_option("--precision", arg, "a length from 1 nm to 1 m");
+		break;
 	}
 	return EXIT_OK;
 }
@@ -169,6 +177,7 @@ parse_options(int argc, char **argv, struct run_opts *o)
 		{ "record", required_argument, NULL, 'r' },
 		{ "resume", required_argument, NULL, 'R' },
 		{ "keyframe-every", required_argument, NULL, 'k' },
+		{ "precision", required_argument, NULL, 'P' },
 		{ "ascii", no_argument, NULL, 'A' },
 		{ "unicode", no_argument, NULL, 'U' },
 		{ "blocks", no_argument, NULL, 'B' },
@@ -382,6 +391,7 @@ run_tui(struct stepper *st, const struct run_opts *o)
 	source_live(&src, &lv, st);
 	stepper_set_stop(st, tui_stop_flag());
 	lv.keyframe_every = o->keyframe_every;
+	lv.precision = o->precision;
 	if (o->record != NULL && src.record(src.ctx, o->record, why, sizeof why) != 0) {
 		fprintf(stderr, "drape: --record: %s\n", why);
 		source_live_free(&lv);
@@ -479,7 +489,7 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	int rc;
 
 	if (o->record != NULL && record_open(&rec, o->record, st, o->keyframe_every > 0 ?
-	    o->keyframe_every : record_default_keyframes(st), &err) != 0) {
+	    o->keyframe_every : record_default_keyframes(st), o->precision, &err) != 0) {
 		fprintf(stderr, "drape: --record: %s\n", err.msg);
 		return EXIT_RUNTIME;
 	}

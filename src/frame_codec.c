@@ -67,15 +67,14 @@ tdiff(const uint32_t *bits, size_t f, size_t ncoord, size_t k)
 	return bits[f * ncoord + k] - (f > 0 ? bits[(f - 1) * ncoord + k] : 0);
 }
 
-void
-frames_encode(const float *x, size_t nframes, size_t ncoord, uint32_t *tmp, unsigned char *out)
+/* The residuals of words bits (in place) and their shuffle into out. */
+static void
+encode_words(uint32_t *bits, size_t nframes, size_t ncoord, unsigned char *out)
 {
 	size_t f, k, n = nframes * ncoord;
-	uint32_t *bits = tmp;
 
-	/* Residuals are computed back to front so that tmp can hold the bit
-	 * patterns the earlier residuals still need. */
-	memcpy(bits, x, n * sizeof *bits);
+	/* Residuals are computed back to front so that bits can hold the
+	 * words the earlier residuals still need. */
 	for (f = nframes; f-- > 0;)
 		for (k = ncoord; k-- > 0;) {
 			uint32_t d = tdiff(bits, f, ncoord, k);
@@ -87,11 +86,11 @@ frames_encode(const float *x, size_t nframes, size_t ncoord, uint32_t *tmp, unsi
 	codec_shuffle((const unsigned char *)bits, out, n, 4);
 }
 
-void
-frames_decode(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp, float *x)
+/* Words back from in into bits. */
+static void
+decode_words(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *bits)
 {
 	size_t f, k, n = nframes * ncoord;
-	uint32_t *bits = tmp;
 
 	codec_unshuffle(in, (unsigned char *)bits, n, 4);
 	for (f = 0; f < nframes; f++)
@@ -102,5 +101,36 @@ frames_decode(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *
 				d += tdiff(bits, f, ncoord, k - 3);
 			bits[f * ncoord + k] = d + (f > 0 ? bits[(f - 1) * ncoord + k] : 0);
 		}
-	memcpy(x, bits, n * sizeof *bits);
+}
+
+void
+frames_encode(const float *x, size_t nframes, size_t ncoord, uint32_t *tmp, unsigned char *out)
+{
+	memcpy(tmp, x, nframes * ncoord * sizeof *tmp);
+	encode_words(tmp, nframes, ncoord, out);
+}
+
+void
+frames_decode(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp, float *x)
+{
+	decode_words(in, nframes, ncoord, tmp);
+	memcpy(x, tmp, nframes * ncoord * sizeof *tmp);
+}
+
+/* Integers go through as their two's complement words: the differences
+ * wrap modulo 2^32 both ways, so any int32 comes back. */
+void
+frames_encode_q(const int32_t *q, size_t nframes, size_t ncoord, uint32_t *tmp,
+    unsigned char *out)
+{
+	memcpy(tmp, q, nframes * ncoord * sizeof *tmp);
+	encode_words(tmp, nframes, ncoord, out);
+}
+
+void
+frames_decode_q(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp,
+    int32_t *q)
+{
+	decode_words(in, nframes, ncoord, tmp);
+	memcpy(q, tmp, nframes * ncoord * sizeof *tmp);
 }

@@ -27,4 +27,13 @@ void frames_encode(const float *x, size_t nframes, size_t ncoord, uint32_t *tmp,
 void frames_decode(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp,
     float *x);
 
+/* Lossy frames (replay --precision): nframes frames of ncoord positions,
+ * each already rounded to a whole number q of the grid step (q = x / p),
+ * coded as frames_encode codes bit patterns (the same prediction on the
+ * integers) into 4 * nframes * ncoord bytes, and back to the integers. */
+void frames_encode_q(const int32_t *q, size_t nframes, size_t ncoord, uint32_t *tmp,
+    unsigned char *out);
+void frames_decode_q(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t *tmp,
+    int32_t *q);
+
 #endif

@@ -46,7 +46,7 @@ keyframe(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 
 int
 record_open(struct recorder *rc, const char *path, const struct stepper *st,
-    long keyframe_every, struct drape_err *err)
+    long keyframe_every, double precision, struct drape_err *err)
 {
 	const struct scene *sc = stepper_scene(st);
 	const struct cloth *cl = &stepper_network(st)->cl;
@@ -69,6 +69,7 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	m.nodes = (uint32_t)cl->n;
 	m.triangles = (uint32_t)cl->ntri;
 	m.tri = cl->tri;
+	m.precision = precision;
 	rc->rate = sc->output_rate;
 	rc->keyframe_every = keyframe_every;
 	rc->last_key = -1;

@@ -20,9 +20,10 @@ struct recorder {
 long record_default_keyframes(const struct stepper *st);
 
 /* Opens path and writes the scene, a keyframe and a frame of the current
- * state (step 0, or where a resumed run starts). */
+ * state (step 0, or where a resumed run starts). precision: the frames'
+ * grid step in m (replay.h's lossy frames), 0 for exact float32. */
 int record_open(struct recorder *rc, const char *path, const struct stepper *st,
-    long keyframe_every, struct drape_err *err);
+    long keyframe_every, double precision, struct drape_err *err);
 /* After each stepper_step that succeeded. */
 int record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err);
 /* A keyframe of the final state, then closes; frees rc even on error. */

@@ -206,7 +206,7 @@ write_header(struct replay_writer *w, uint32_t flags, uint64_t index_offset,
 
 	memset(&h, 0, sizeof h);
 	memcpy(h.magic, file_magic, 8);
-	h.version = REPLAY_VERSION;
+	h.version = w->precision > 0 ? REPLAY_VERSION : REPLAY_VERSION_LOSSLESS;
 	h.flags = flags;
 	h.nodes = w->nodes;
 	h.triangles = w->triangles;
@@ -270,6 +270,8 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	w->nodes = m->nodes;
 	w->triangles = m->triangles;
 	w->keyframe_every = m->keyframe_every;
+	w->precision = m->precision > 0 && isfinite(m->precision) ? m->precision : 0;
+	w->q_fits = true;
 	w->frames_per_chunk = FRAMES_PER_CHUNK;
 	w->steps_per_chunk = STEPS_PER_CHUNK;
 	w->flush_every = REPLAY_FLUSH_SECONDS;
@@ -277,6 +279,8 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	w->last_flush = w->clock();
 	if ((w->path = malloc(strlen(path) + 1)) == NULL ||
 	    (w->fx = malloc(FRAMES_PER_CHUNK * n3 * sizeof *w->fx)) == NULL ||
+	    (w->precision > 0 &&
+	    (w->fq = malloc(FRAMES_PER_CHUNK * n3 * sizeof *w->fq)) == NULL) ||
 	    (w->fstep = malloc(FRAMES_PER_CHUNK * sizeof *w->fstep)) == NULL ||
 	    (w->ft = malloc(FRAMES_PER_CHUNK * sizeof *w->ft)) == NULL ||
 	    (w->steps = malloc(STEPS_PER_CHUNK * sizeof *w->steps)) == NULL) {
@@ -303,6 +307,7 @@ fail:
 	}
 	free(w->path);
 	free(w->fx);
+	free(w->fq);
 	free(w->fstep);
 	free(w->ft);
 	free(w->steps);
@@ -315,10 +320,22 @@ fail:
 static int flush_steps(struct replay_writer *w, struct drape_err *err);
 static int flush_if_due(struct replay_writer *w, struct drape_err *err);
 
+/*
+ * Lossy frames (--precision p): each coordinate as the whole number of
+ * grid steps nearest it, so that a frame read back is within p/2 of the
+ * run's position (and float32's own rounding of that). Moving cloth fills
+ * float32's mantissa with bits no predictor guesses (about 7 bytes a node
+ * a frame are left after frames_encode on the tablecloth); on a grid of a
+ * few micrometres the residuals are a byte or two. A chunk with a value
+ * that does not fit in an int32 of grid steps (a cloth thrown kilometres,
+ * a step of a nanometre) is written exact instead: nothing is lost.
+ */
 static int
 flush_frames(struct replay_writer *w, struct drape_err *err)
 {
-	size_t n3 = 3 * (size_t)w->nodes, k = w->nframes, len = k * (16 + 4 * n3), i;
+	size_t n3 = 3 * (size_t)w->nodes, k = w->nframes, i;
+	bool lossy = w->precision > 0 && w->q_fits;
+	size_t head = lossy ? 8 : 0, len = head + k * (16 + 4 * n3);
 	unsigned char *p;
 	uint32_t *tmp;
 	int rc;
@@ -330,15 +347,21 @@ flush_frames(struct replay_writer *w, struct drape_err *err)
 		return -1;
 	}
 	p = w->buf;
+	if (lossy)
+		put64(p, dbits(w->precision));
 	for (i = 0; i < k; i++) {
-		put64(p + 8 * i, w->fstep[i]);
-		put64(p + 8 * (k + i), dbits(w->ft[i]));
+		put64(p + head + 8 * i, w->fstep[i]);
+		put64(p + head + 8 * (k + i), dbits(w->ft[i]));
 	}
-	frames_encode(w->fx, k, n3, tmp, p + 16 * k);
+	if (lossy)
+		frames_encode_q(w->fq, k, n3, tmp, p + head + 16 * k);
+	else
+		frames_encode(w->fx, k, n3, tmp, p + head + 16 * k);
 	free(tmp);
-	rc = write_chunk(w, REPLAY_FRAMES, w->fstep[0], (uint32_t)k, p, len,
-	    Z_BEST_COMPRESSION, err);
+	rc = write_chunk(w, lossy ? REPLAY_FRAMES_Q : REPLAY_FRAMES, w->fstep[0], (uint32_t)k, p,
+	    len, Z_BEST_COMPRESSION, err);
 	w->nframes = 0;
+	w->q_fits = true;
 	return rc;
 }
 
@@ -351,6 +374,20 @@ replay_write_frame(struct replay_writer *w, long step, double t, const double *x
 
 	for (i = 0; i < n3; i++)
 		f[i] = (float)x[i];
+	if (w->precision > 0) {
+		int32_t *q = w->fq + w->nframes * n3;
+
+		for (i = 0; i < n3; i++) {
+			double g = nearbyint(x[i] / w->precision);
+
+			/* a NaN fails both tests */
+			if (!(g >= -2147483647.0 && g <= 2147483647.0)) {
+				w->q_fits = false;
+				g = 0;
+			}
+			q[i] = (int32_t)g;
+		}
+	}
 	w->fstep[w->nframes] = (uint64_t)step;
 	w->ft[w->nframes] = t;
 	if (++w->nframes == w->frames_per_chunk)
@@ -663,6 +700,7 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 	}
 	free(w->path);
 	free(w->fx);
+	free(w->fq);
 	free(w->fstep);
 	free(w->ft);
 	free(w->steps);
@@ -707,8 +745,9 @@ check_chunk_header(const struct replay *r, const struct replay_chunk_header *h)
 			return -1;
 		break;
 	case REPLAY_FRAMES:
+	case REPLAY_FRAMES_Q:
 		if (h->count < 1 || h->count > MAX_FRAMES_CHUNK ||
-		    raw != (uint64_t)h->count * (16 + 12 * n))
+		    raw != (h->kind == REPLAY_FRAMES_Q ? 8 : 0) + (uint64_t)h->count * (16 + 12 * n))
 			return -1;
 		break;
 	case REPLAY_KEYFRAME:
@@ -992,8 +1031,8 @@ open_common(struct replay *r, const char *name, struct drape_err *err)
 		return -1;
 	}
 #endif
-	if (r->hdr.version != REPLAY_VERSION) {
-		err_set(err, "%s: replay version %u; this drape reads version %d", name,
+	if (r->hdr.version < 1 || r->hdr.version > REPLAY_VERSION) {
+		err_set(err, "%s: replay version %u; this drape reads versions 1 to %d", name,
 		    r->hdr.version, REPLAY_VERSION);
 		return -1;
 	}
@@ -1012,7 +1051,7 @@ open_common(struct replay *r, const char *name, struct drape_err *err)
 
 		if (c->kind == REPLAY_META && meta < 0)
 			meta = (long)i;
-		else if (c->kind == REPLAY_FRAMES)
+		else if (replay_is_frames(c->kind))
 			r->nframes += c->count;
 		else if (c->kind == REPLAY_KEYFRAME)
 			r->nkeyframes++;
@@ -1091,17 +1130,27 @@ replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
     struct drape_err *err)
 {
 	const struct replay_chunk *c = &r->chunk[i];
-	size_t k = c->count, n3 = 3 * (size_t)r->hdr.nodes, j;
+	size_t k = c->count, n3 = 3 * (size_t)r->hdr.nodes, j, head;
 	unsigned char *p;
 	uint32_t *tmp;
 
 	memset(fr, 0, sizeof *fr);
-	if (c->kind != REPLAY_FRAMES) {
+	if (!replay_is_frames(c->kind)) {
 		err_set(err, "chunk %zu: not frames", c->ordinal);
 		return -1;
 	}
 	if (inflate_chunk(r, c, &p, err) != 0)
 		return -1;
+	head = c->kind == REPLAY_FRAMES_Q ? 8 : 0;
+	if (head > 0) {
+		fr->precision = bitsd(get64(p));
+		if (!(fr->precision > 0) || !isfinite(fr->precision)) {
+			free(p);
+			err_set(err, "chunk %zu: lossy frames with a grid step of %g m: expected a "
+			    "length greater than 0", c->ordinal, fr->precision);
+			return -1;
+		}
+	}
 	fr->count = k;
 	if ((fr->step = malloc(k * sizeof *fr->step)) == NULL ||
 	    (fr->t = malloc(k * sizeof *fr->t)) == NULL ||
@@ -1113,10 +1162,26 @@ replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
 		return -1;
 	}
 	for (j = 0; j < k; j++) {
-		fr->step[j] = (long)(get64(p + 8 * j) & 0x7fffffffffffffffULL);
-		fr->t[j] = bitsd(get64(p + 8 * (k + j)));
+		fr->step[j] = (long)(get64(p + head + 8 * j) & 0x7fffffffffffffffULL);
+		fr->t[j] = bitsd(get64(p + head + 8 * (k + j)));
 	}
-	frames_decode(p + 16 * k, k, n3, tmp, fr->x);
+	if (head > 0) {
+		int32_t *q = malloc(k * n3 * sizeof *q);
+
+		if (q == NULL) {
+			free(tmp);
+			free(p);
+			replay_frames_free(fr);
+			err_set(err, "chunk %zu: out of memory", c->ordinal);
+			return -1;
+		}
+		frames_decode_q(p + head + 16 * k, k, n3, tmp, q);
+		for (j = 0; j < k * n3; j++)
+			fr->x[j] = (float)((double)q[j] * fr->precision);
+		free(q);
+	} else {
+		frames_decode(p + 16 * k, k, n3, tmp, fr->x);
+	}
 	free(tmp);
 	free(p);
 	return 0;

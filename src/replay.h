@@ -20,7 +20,11 @@
 #include "collide.h"
 #include "err.h"
 
-#define REPLAY_VERSION 1
+/* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q); a
+ * writer marks a file version 2 only when it may hold them, so that a
+ * lossless recording stays readable by a drape that reads version 1. */
+#define REPLAY_VERSION 2
+#define REPLAY_VERSION_LOSSLESS 1
 
 enum replay_kind {
 	REPLAY_META = 1,	/* scene text and resolved options */
@@ -28,7 +32,16 @@ enum replay_kind {
 	REPLAY_KEYFRAME = 3,	/* the double state y, t, step, dt */
 	REPLAY_STEPS = 4,	/* statistics and events of consecutive steps */
 	REPLAY_INDEX = 5,	/* the keyframes' steps and offsets, at close */
+	REPLAY_FRAMES_Q = 6,	/* positions rounded to a grid (--precision) */
 };
+#define REPLAY_KIND_MAX REPLAY_FRAMES_Q
+
+/* Frames chunks, exact or rounded: the same count, steps and times. */
+static inline int
+replay_is_frames(uint32_t kind)
+{
+	return kind == REPLAY_FRAMES || kind == REPLAY_FRAMES_Q;
+}
 
 /* On-disk structs (little-endian; configure refuses big-endian hosts). */
 struct replay_file_header {
@@ -70,6 +83,9 @@ struct replay_meta {
 	long keyframe_every;	/* steps between keyframes */
 	uint32_t nodes, triangles;
 	int *tri;		/* 3 per triangle, the cloth's, as OBJ faces */
+	/* The writer's: frames rounded to this grid step (m), 0 for exact
+	 * float32. Not in the scene chunk: each frames chunk says its own. */
+	double precision;
 };
 
 /* Per step: what struct collide_stats says, and when. */
@@ -86,8 +102,12 @@ struct replay_writer {
 	uint32_t nodes, triangles;
 	long keyframe_every;
 	bool failed;		/* a write failed: stop writing */
-	/* pending frames */
+	/* pending frames: float32, and when precision > 0 the same rounded to
+	 * whole grid steps, while every value fits (q_fits) */
+	double precision;
 	float *fx;
+	int32_t *fq;
+	bool q_fits;
 	uint64_t *fstep;
 	double *ft;
 	size_t nframes, frames_per_chunk;
@@ -152,6 +172,7 @@ struct replay_keyframe {
 };
 
 struct replay_frames {
+	double precision;	/* the grid step (m) of a lossy chunk, 0 if exact */
 	size_t count;
 	long *step;
 	double *t;

@@ -107,6 +107,7 @@ struct source_live {
 	double *accel;		/* 3n scratch, for force */
 	long accel_step;	/* the step accel is of, -1: none */
 	long keyframe_every;	/* for recordings; 0: record_default_keyframes */
+	double precision;	/* for recordings: record_open's */
 	bool recording;
 	struct recorder rec;
 	char *rec_path;

@@ -156,7 +156,7 @@ live_record(void *ctx, const char *path, char *why, size_t len)
 		return -1;
 	}
 	strcpy(lv->rec_path, path);
-	if (record_open(&lv->rec, path, lv->st, every, &err) != 0) {
+	if (record_open(&lv->rec, path, lv->st, every, lv->precision, &err) != 0) {
 		snprintf(why, len, "%s", err.msg);
 		free(lv->rec_path);
 		lv->rec_path = NULL;

@@ -80,7 +80,7 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 		struct replay_keyframe kf;
 		struct replay_steps ss;
 
-		if (c->kind == REPLAY_FRAMES) {
+		if (replay_is_frames(c->kind)) {
 			if (replay_read_frames(&sr->rp, i, &fr, &ignored) != 0) {
 				sr->nskipped++;
 				continue;

@@ -41,7 +41,7 @@ struct truth {
 	int n;
 };
 
-static char replay_path[700];
+static char replay_path[700], lossy_path[700];
 
 static void
 path_in_dir(char *out, size_t len, const char *name)
@@ -55,7 +55,14 @@ static const char tiny_fast_scene[] =
     "[simulation]\nname = tiny-fast\nduration = 0.3 s\ndt = 5 ms\nintegrator = fast\n"
     "output_rate = 200\n" TINY_CLOTH;
 
-static void record_text(struct truth *tr, const char *path, const char *text, int key_every);
+static void record_text_p(struct truth *tr, const char *path, const char *text, int key_every,
+    double precision);
+
+static void
+record_text(struct truth *tr, const char *path, const char *text, int key_every)
+{
+	record_text_p(tr, path, text, key_every, 0);
+}
 
 static void
 record_tiny(struct truth *tr, const char *path)
@@ -64,7 +71,8 @@ record_tiny(struct truth *tr, const char *path)
 }
 
 static void
-record_text(struct truth *tr, const char *path, const char *text, int key_every)
+record_text_p(struct truth *tr, const char *path, const char *text, int key_every,
+    double precision)
 {
 	struct scene sc;
 	struct stepper *st;
@@ -81,7 +89,7 @@ record_text(struct truth *tr, const char *path, const char *text, int key_every)
 	tr->y = malloc(n6 * sizeof *tr->y);
 	assert_non_null(tr->y);
 	memcpy(tr->y, state_y(st), n6 * sizeof *tr->y);
-	if (record_open(&rec, path, st, key_every, &err) != 0)
+	if (record_open(&rec, path, st, key_every, precision, &err) != 0)
 		fail_msg("record_open: %s", err.msg);
 	while (!stepper_done(st)) {
 		if (stepper_step(st, &bl) != STEP_OK)
@@ -250,6 +258,102 @@ round_trip(void **state)
 	truth_free(&tr);
 }
 
+/*
+ * --precision: the tiny run recorded with its frames on a 20 um grid.
+ * Every coordinate of every frame is within half the grid step of the
+ * run's (plus float32's own rounding of the result), the file says version
+ * 2 and its frames chunks are the lossy kind, and everything else (steps,
+ * events, keyframes) is as exact as without. A cloth whose coordinates
+ * do not fit 32 bits of a 1 nm grid (5 m away) gets exact frames instead.
+ */
+static void
+lossy_round_trip(void **state)
+{
+	static const double grid = 20e-6;
+	struct truth tr, far;
+	struct replay r;
+	struct drape_err err;
+	size_t i, j, k, n3, frames = 0, nev = 0, lossy = 0;
+	double worst = 0;
+	char text[4096], path[700];
+	const char *at;
+
+	(void)state;
+	path_in_dir(lossy_path, sizeof lossy_path, "tiny-lossy.drr");
+	record_text_p(&tr, lossy_path, tiny_scene, KEY_EVERY, grid);
+	if (replay_open(&r, lossy_path, &err) != 0)
+		fail_msg("replay_open: %s", err.msg);
+	assert_int_equal(r.hdr.version, 2);
+	n3 = 3 * (size_t)tr.n;
+	for (i = 0; i < r.nchunks; i++) {
+		struct replay_frames fr;
+		struct replay_steps ss;
+
+		if (r.chunk[i].kind == REPLAY_STEPS) {
+			if (replay_read_steps(&r, i, &ss, &err) != 0)
+				fail_msg("%s", err.msg);
+			for (j = 0; j < ss.nev; j++)
+				assert_true(events_equal(&ss.ev[j], &tr.ev[nev + j]));
+			nev += ss.nev;
+			replay_steps_free(&ss);
+		}
+		if (!replay_is_frames(r.chunk[i].kind))
+			continue;
+		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES_Q);
+		if (replay_read_frames(&r, i, &fr, &err) != 0)
+			fail_msg("%s", err.msg);
+		assert_true(fr.precision == grid);
+		for (j = 0; j < fr.count; j++) {
+			const double *y = tr.y + (size_t)fr.step[j] * 2 * n3;
+
+			for (k = 0; k < n3; k++) {
+				double e = fabs(fr.x[j * n3 + k] - y[k]);
+
+				if (e > grid / 2 + fabs(y[k]) * 0x1p-23)
+					fail_msg("frame at step %ld, coordinate %zu: %.9g for %.9g, "
+					    "%.3g m off; the bound is %.3g m", fr.step[j], k,
+					    fr.x[j * n3 + k], y[k], e, grid / 2);
+				worst = fmax(worst, e);
+			}
+			frames++;
+		}
+		lossy++;
+		replay_frames_free(&fr);
+	}
+	print_message("%zu frames on a %g m grid: at most %.3g m off\n", frames, grid, worst);
+	assert_int_equal(frames, 6);
+	assert_true(lossy > 0);
+	assert_true(worst > grid / 20);	/* it did round */
+	assert_int_equal(nev, tr.nev);
+	replay_close(&r);
+	truth_free(&tr);
+
+	/* 5 m away on a 1 nm grid: 5e9 steps, more than an int32 holds */
+	assert_non_null(at = strstr(tiny_scene, "origin = 0 3 0 mm"));
+	snprintf(text, sizeof text, "%.*sorigin = 5000 3 0 mm%s", (int)(at - tiny_scene),
+	    tiny_scene, at + strlen("origin = 0 3 0 mm"));
+	path_in_dir(path, sizeof path, "tiny-far.drr");
+	record_text_p(&far, path, text, KEY_EVERY, 1e-9);
+	if (replay_open(&r, path, &err) != 0)
+		fail_msg("replay_open: %s", err.msg);
+	for (i = 0, frames = 0; i < r.nchunks; i++) {
+		struct replay_frames fr;
+
+		if (!replay_is_frames(r.chunk[i].kind))
+			continue;
+		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES);
+		if (replay_read_frames(&r, i, &fr, &err) != 0)
+			fail_msg("%s", err.msg);
+		for (j = 0; j < fr.count; j++, frames++)
+			for (k = 0; k < n3; k++)
+				assert_true(fr.x[j * n3 + k] == (float)far.y[(size_t)fr.step[j] * 2 * n3 + k]);
+		replay_frames_free(&fr);
+	}
+	assert_int_equal(frames, 6);
+	replay_close(&r);
+	truth_free(&far);
+}
+
 /* Every chunk of a file read back: no crash, and each one decodes. */
 static void
 read_all(const struct replay *r)
@@ -263,7 +367,8 @@ read_all(const struct replay *r)
 		struct replay_steps ss;
 		int rc = 0;
 
-		if (r->chunk[i].kind == REPLAY_FRAMES && (rc = replay_read_frames(r, i, &fr, &err)) == 0)
+		if (replay_is_frames(r->chunk[i].kind) &&
+		    (rc = replay_read_frames(r, i, &fr, &err)) == 0)
 			replay_frames_free(&fr);
 		if (r->chunk[i].kind == REPLAY_KEYFRAME &&
 		    (rc = replay_read_keyframe(r, i, &kf, &err)) == 0)
@@ -276,15 +381,14 @@ read_all(const struct replay *r)
 }
 
 static void
-cut_at_every_byte(void **state)
+cut_file(const char *path)
 {
 	struct replay whole, r;
 	struct drape_err err;
 	unsigned char *buf;
 	size_t len, L, i, *ends, nends, meta_end;
 
-	(void)state;
-	buf = slurp_file(replay_path, &len);
+	buf = slurp_file(path, &len);
 	if (replay_open_mem(&whole, buf, len, &err) != 0)
 		fail_msg("%s", err.msg);
 	nends = whole.nchunks;
@@ -317,16 +421,24 @@ cut_at_every_byte(void **state)
 	free(buf);
 }
 
+/* The tiny replay and its lossy twin (lossy_round_trip) cut at every byte. */
 static void
-bit_flips(void **state)
+cut_at_every_byte(void **state)
+{
+	(void)state;
+	cut_file(replay_path);
+	cut_file(lossy_path);
+}
+
+static void
+flip_file(const char *path)
 {
 	struct replay whole, r;
 	struct drape_err err;
 	unsigned char *buf, *bad;
 	size_t len, i, j, at, flips = 0;
 
-	(void)state;
-	buf = slurp_file(replay_path, &len);
+	buf = slurp_file(path, &len);
 	bad = malloc(len);
 	assert_non_null(bad);
 	if (replay_open_mem(&whole, buf, len, &err) != 0)
@@ -376,6 +488,14 @@ bit_flips(void **state)
 	replay_close(&whole);
 	free(bad);
 	free(buf);
+}
+
+static void
+bit_flips(void **state)
+{
+	(void)state;
+	flip_file(replay_path);
+	flip_file(lossy_path);
 }
 
 /* The continued run from each keyframe ends with the recorded run's hash. */
@@ -707,7 +827,7 @@ cli_pc2(void **state)
 		struct replay_frames fr;
 		size_t k;
 
-		if (rp.chunk[i].kind != REPLAY_FRAMES)
+		if (!replay_is_frames(rp.chunk[i].kind))
 			continue;
 		assert_int_equal(replay_read_frames(&rp, i, &fr, &err), 0);
 		for (k = 0; k < fr.count; k++, frame++)
@@ -795,6 +915,49 @@ cli_sigterm(void **state)
 	assert_int_equal(r.status, 0);
 	assert_non_null(strstr(r.out, "closed cleanly"));
 	assert_non_null(strstr(r.out, "integrity    whole"));
+}
+
+/* --precision through the binary: a lossy recording says so in drape info
+ * and exports; a bad length is refused with exit 2, naming the option. */
+static void
+cli_precision(void **state)
+{
+	static const char *const bad[] = { "0", "-1um", "5 kg", "2 m", "0.1 nm", "x" };
+	struct result r;
+	char args[3000], scene[700], out[700];
+	size_t i;
+	FILE *f;
+
+	(void)state;
+	path_in_dir(scene, sizeof scene, "tiny-cli.scene");
+	assert_non_null(f = fopen(scene, "w"));
+	assert_true(fputs(tiny_scene, f) >= 0);
+	assert_int_equal(fclose(f), 0);
+	path_in_dir(out, sizeof out, "tiny-cli-lossy.drr");
+	snprintf(args, sizeof args, "run --headless --precision 10um --record '%s' '%s'", out, scene);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	snprintf(args, sizeof args, "info '%s'", out);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "(version 2, closed cleanly)"));
+	assert_non_null(strstr(r.out, "6 at 200 per second, rounded to 1e-05 m (within 5e-06 m"));
+	snprintf(args, sizeof args, "export --pc2 '%s/lossy.pc2' '%s'", dir, out);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	/* exact frames: version 1, and no rounding said */
+	snprintf(args, sizeof args, "info '%s'", replay_path);
+	drape(&r, args);
+	assert_non_null(strstr(r.out, "(version 1, closed cleanly)"));
+	assert_null(strstr(r.out, "rounded"));
+	for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+		snprintf(args, sizeof args, "run --headless --precision '%s' --record '%s/bad.drr' '%s'",
+		    bad[i], dir, scene);
+		drape(&r, args);
+		if (r.status != 2 || strstr(r.err, "--precision") == NULL ||
+		    strstr(r.err, "a length from 1 nm to 1 m") == NULL)
+			fail_msg("--precision '%s': status %d, stderr '%s'", bad[i], r.status, r.err);
+	}
 }
 
 static void
@@ -912,6 +1075,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(codec_round_trip),
 		cmocka_unit_test(round_trip),
+		cmocka_unit_test(lossy_round_trip),
 		cmocka_unit_test(cut_at_every_byte),
 		cmocka_unit_test(bit_flips),
 		cmocka_unit_test(resume_every_keyframe),
@@ -921,6 +1085,7 @@ main(void)
 		cmocka_unit_test(cli_events_node),
 		cmocka_unit_test(cli_pc2),
 		cmocka_unit_test(cli_info_damaged),
+		cmocka_unit_test(cli_precision),
 		cmocka_unit_test(cli_bad),
 		cmocka_unit_test(cli_sigterm),
 		cmocka_unit_test(shipped_replays),

@@ -397,7 +397,7 @@ replay_totals_equal_live(void **state)
 	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
 	sc.duration = 0.15;
 	st = new_stepper(&sc);
-	if (record_open(&rec, path, st, 500, &err) != 0)
+	if (record_open(&rec, path, st, 500, 0, &err) != 0)
 		fail_msg("%s", err.msg);
 	while (!stepper_done(st)) {
 		step_once(st);

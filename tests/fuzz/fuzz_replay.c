@@ -29,6 +29,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
 		switch (r.chunk[i].kind) {
 		case REPLAY_FRAMES:
+		case REPLAY_FRAMES_Q:
 			if (replay_read_frames(&r, i, &fr, &err) == 0)
 				replay_frames_free(&fr);
 			break;

@@ -37,6 +37,16 @@ evlog_clear(struct evlog *log)
 }
 
 void
+evlog_copy(struct evlog *dst, const struct evlog *src)
+{
+	if (dst->n != src->n || src->n < 1)
+		return;
+	memcpy(dst->ev, src->ev, (size_t)src->n * EVLOG_PER_NODE * sizeof *dst->ev);
+	memcpy(dst->count, src->count, (size_t)src->n * sizeof *dst->count);
+	dst->total = src->total;
+}
+
+void
 evlog_add(struct evlog *log, const struct contact_event *ev, size_t nev)
 {
 	size_t k;

@@ -24,6 +24,9 @@ void evlog_free(struct evlog *log);
 /* Forgets every event (a replay going back). */
 void evlog_clear(struct evlog *log);
 
+/* dst (of as many nodes) becomes a copy of src. */
+void evlog_copy(struct evlog *dst, const struct evlog *src);
+
 /* Logs a step's events (those of nodes out of range are skipped). */
 void evlog_add(struct evlog *log, const struct contact_event *ev, size_t nev);
 

@@ -124,6 +124,13 @@ void source_live_free(struct source_live *lv);
 /* A replay, its scene's network built from the recorded scene. The struct
  * must not move once open (the network points into it). */
 struct replay_view;
+/* A replay's steps chunk as its viewer keeps it: statistics only. */
+struct replay_stepchunk {
+	size_t chunk;		/* in rp.chunk */
+	size_t count;
+	struct replay_step *s;	/* count steps, each with its number of events */
+};
+
 struct source_replay {
 	struct replay rp;
 	char *file;
@@ -135,8 +142,17 @@ struct source_replay {
 	double t, dt;
 	struct replay_view *view;	/* frames and keyframes, by step */
 	size_t nviews;
-	struct replay_steps *steps;	/* the intact steps chunks, by first step */
+	/* The intact steps chunks, by first step: their statistics kept from
+	 * the open, their events read again when needed (source_replay.c). */
+	struct replay_stepchunk *steps;
 	size_t nsteps;
+	struct replay_steps evs;	/* the chunk of the cursor's events */
+	size_t evs_of;		/* its index in steps, or SIZE_MAX for none */
+	struct evlog hist;	/* every event of the steps before hist_at */
+	long hist_at;
+	struct evlog *mark;	/* hist at the first step of some chunks */
+	long *mark_at;
+	size_t nmarks;
 	size_t nskipped;	/* chunks that would not decode */
 	long first, last;	/* the steps the cursor goes to */
 	long cursor;		/* the state step shown */

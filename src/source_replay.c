@@ -4,9 +4,18 @@
  * hold float32 positions only: there the velocities are the difference to
  * the previous frame and the force is not known; a keyframe has both
  * exactly. Chunks that would not decode are skipped: what is intact shows.
- * The steps chunks are decoded once and kept (statistics and events of
- * every step, for the totals and the inspector's history at any step);
- * frames and keyframes are read when shown, the last frames chunk kept. */
+ *
+ * Memory is bounded by a few chunks, not by the run: a long run's events
+ * are most of its file (6 million, 160 MB, on the 2 s tablecloth), and
+ * keeping them all decoded took 576 MB to show one frame of it. The open
+ * reads every chunk once: it keeps the steps' statistics (for the totals
+ * at any step; a few hundred bytes a step) and drops their events. The
+ * cursor's events are read again from their chunk (the last one kept);
+ * the inspector's history (every event before the cursor, per node the
+ * latest few) is carried forward as the cursor moves forward, and going
+ * back restarts it from the nearest mark: the history at the first step
+ * of every so many chunks, taken at the open, at most MARK_BYTES in all.
+ * Frames and keyframes are read when shown, the last frames chunk kept. */
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -19,6 +28,10 @@
 /* Steps beyond this are a hostile file's, not a run's: left out, so that
  * the cursor's arithmetic never overflows. */
 #define STEP_MAX (LONG_MAX / 4)
+
+/* The history marks' memory, in all: about 60 marks of the tablecloth's
+ * 625 nodes, so that a step back reads at most a chunk or two again. */
+#define MARK_BYTES ((size_t)16 << 20)
 
 struct replay_view {
 	long step;
@@ -41,8 +54,8 @@ view_order(const void *a, const void *b)
 static int
 steps_order(const void *a, const void *b)
 {
-	const struct replay_steps *p = a, *q = b;
-	long s = p->count > 0 ? p->s[0].step : 0, t = q->count > 0 ? q->s[0].step : 0;
+	const struct replay_stepchunk *p = a, *q = b;
+	long s = p->s[0].step, t = q->s[0].step;
 
 	return s < t ? -1 : s > t;
 }
@@ -66,13 +79,69 @@ add_view(struct source_replay *sr, size_t *cap, long step, double t, size_t chun
 	return 0;
 }
 
+/* The open's pass over a steps chunk ss, the next in the file: a mark of
+ * the history before it every so many chunks, then its events logged. The
+ * marks hold only while the chunks come in step order (drape writes them
+ * so); else *in_order goes false and they are dropped at the end. 0, or
+ * -1 out of memory. */
+static int
+mark_and_log(struct source_replay *sr, const struct replay_steps *ss, bool *in_order)
+{
+	size_t every, snap = (size_t)sr->net.cl.n *
+	    (EVLOG_PER_NODE * sizeof(struct contact_event) + sizeof(long));
+	size_t most = MARK_BYTES / snap > 0 ? MARK_BYTES / snap : 1;
+
+	if (!*in_order)
+		return 0;
+	if (sr->nsteps > 0 && ss->s[0].step <= sr->steps[sr->nsteps - 1].s[
+	    sr->steps[sr->nsteps - 1].count - 1].step) {
+		*in_order = false;
+		return 0;
+	}
+	every = (sr->rp.nstep_chunks + most - 1) / most;
+	if (every < 1)
+		every = 1;
+	if (sr->nsteps % every == 0) {
+		struct evlog *m = realloc(sr->mark, (sr->nmarks + 1) * sizeof *m);
+		long *at;
+
+		if (m == NULL)
+			return -1;
+		sr->mark = m;
+		if ((at = realloc(sr->mark_at, (sr->nmarks + 1) * sizeof *at)) == NULL)
+			return -1;
+		sr->mark_at = at;
+		if (evlog_init(&m[sr->nmarks], sr->net.cl.n) != 0)
+			return -1;
+		evlog_copy(&m[sr->nmarks], &sr->hist);
+		at[sr->nmarks++] = ss->s[0].step;
+	}
+	evlog_add(&sr->hist, ss->ev, ss->nev);
+	return 0;
+}
+
+static void
+drop_marks(struct source_replay *sr)
+{
+	size_t i;
+
+	for (i = 0; i < sr->nmarks; i++)
+		evlog_free(&sr->mark[i]);
+	free(sr->mark);
+	free(sr->mark_at);
+	sr->mark = NULL;
+	sr->mark_at = NULL;
+	sr->nmarks = 0;
+}
+
 /* Every intact chunk decoded once: the frames' and keyframes' steps and
- * times, and the steps chunks kept. */
+ * times, the steps' statistics, and the history marks. */
 static int
 index_chunks(struct source_replay *sr, struct drape_err *err)
 {
 	size_t i, k, vcap = 0, scap = 0, j;
 	struct drape_err ignored;
+	bool in_order = true;
 
 	for (i = 0; i < sr->rp.nchunks; i++) {
 		const struct replay_chunk *c = &sr->rp.chunk[i];
@@ -112,7 +181,7 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 			}
 			if (sr->nsteps == scap) {
 				size_t ncap = scap ? 2 * scap : 16;
-				struct replay_steps *p = realloc(sr->steps, ncap * sizeof *p);
+				struct replay_stepchunk *p = realloc(sr->steps, ncap * sizeof *p);
 
 				if (p == NULL) {
 					replay_steps_free(&ss);
@@ -121,7 +190,14 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 				sr->steps = p;
 				scap = ncap;
 			}
-			sr->steps[sr->nsteps++] = ss;
+			if (mark_and_log(sr, &ss, &in_order) != 0) {
+				replay_steps_free(&ss);
+				goto oom;
+			}
+			/* the statistics kept, the events dropped */
+			sr->steps[sr->nsteps++] = (struct replay_stepchunk){ i, ss.count, ss.s };
+			ss.s = NULL;
+			replay_steps_free(&ss);
 		}
 	}
 	if (sr->nviews == 0) {
@@ -135,6 +211,11 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 	sr->nviews = j + 1;
 	if (sr->nsteps > 0)
 		qsort(sr->steps, sr->nsteps, sizeof *sr->steps, steps_order);
+	if (!in_order)
+		drop_marks(sr);
+	/* the history starts over from the marks (or the start) */
+	evlog_clear(&sr->hist);
+	sr->hist_at = LONG_MIN;
 	return 0;
 oom:
 	err_set(err, "%s: out of memory", sr->file);
@@ -177,25 +258,48 @@ load_view(struct source_replay *sr, size_t i, double *x, double *v)
 	return 0;
 }
 
-/* The step record numbered step, or NULL; *ev gets its events. */
+/* Steps chunk j's events in sr->evs (the last chunk read is kept); 0, or
+ * -1 if it no longer decodes (out of memory). */
+static int
+load_events(struct source_replay *sr, size_t j)
+{
+	struct drape_err ignored;
+
+	if (sr->evs_of == j)
+		return 0;
+	replay_steps_free(&sr->evs);
+	sr->evs_of = SIZE_MAX;
+	if (replay_read_steps(&sr->rp, sr->steps[j].chunk, &sr->evs, &ignored) != 0)
+		return -1;
+	sr->evs_of = j;
+	return 0;
+}
+
+/* The step record numbered step, or NULL; *ev and *nev get its events
+ * (none if its chunk no longer decodes). */
 static const struct replay_step *
-find_step(const struct source_replay *sr, long step, const struct contact_event **ev)
+find_step(struct source_replay *sr, long step, const struct contact_event **ev, size_t *nev)
 {
 	size_t i, j, at;
 
-	for (i = 0; i < sr->nsteps; i++) {
-		const struct replay_steps *ss = &sr->steps[i];
-
-		if (step < ss->s[0].step || step > ss->s[ss->count - 1].step)
-			continue;
-		for (j = 0, at = 0; j < ss->count && ss->s[j].step != step; j++)
-			at += (size_t)ss->s[j].nev;
-		if (j == ss->count)
-			continue;
-		*ev = ss->ev + at;
-		return &ss->s[j];
-	}
 	*ev = NULL;
+	*nev = 0;
+	for (i = 0; i < sr->nsteps; i++) {
+		const struct replay_stepchunk *sc = &sr->steps[i];
+
+		if (step < sc->s[0].step || step > sc->s[sc->count - 1].step)
+			continue;
+		for (j = 0, at = 0; j < sc->count && sc->s[j].step != step; j++)
+			at += (size_t)sc->s[j].nev;
+		if (j == sc->count)
+			continue;
+		if (sc->s[j].nev > 0 && load_events(sr, i) == 0 &&
+		    at + (size_t)sc->s[j].nev <= sr->evs.nev) {
+			*ev = sr->evs.ev + at;
+			*nev = (size_t)sc->s[j].nev;
+		}
+		return &sc->s[j];
+	}
 	return NULL;
 }
 
@@ -253,8 +357,7 @@ set_cursor(struct source_replay *sr, long step)
 	sr->cursor = step;
 	sr->cur = i;
 	sr->exact = vw->key;
-	sr->rec = find_step(sr, step - 1, &sr->ev);
-	sr->nev = sr->rec != NULL ? (size_t)sr->rec->nev : 0;
+	sr->rec = find_step(sr, step - 1, &sr->ev, &sr->nev);
 	sr->step = step;
 	sr->t = sr->rec != NULL ? sr->rec->t : vw->t;
 	sr->dt = sr->rec != NULL ? sr->rec->dt : sr->rp.meta.dt_set;
@@ -416,20 +519,55 @@ replay_position(void *ctx, struct source_position *p)
 	p->last = sr->last;
 }
 
+/* Logs the events of the steps from hist_at to before step `to`, from the
+ * chunks that hold them, into the history. */
+static void
+advance_history(struct source_replay *sr, long to)
+{
+	struct drape_err ignored;
+	size_t j, n;
+
+	for (j = 0; j < sr->nsteps; j++) {
+		const struct replay_stepchunk *sc = &sr->steps[j];
+		struct replay_steps ss, *use = &ss;
+
+		if (sc->s[sc->count - 1].step < sr->hist_at || sc->s[0].step >= to)
+			continue;
+		if (j == sr->evs_of)
+			use = &sr->evs;
+		else if (replay_read_steps(&sr->rp, sc->chunk, &ss, &ignored) != 0)
+			continue;
+		/* a chunk's events are in step order */
+		for (n = 0; n < use->nev && use->ev[n].step < to; n++)
+			if (use->ev[n].step >= sr->hist_at)
+				evlog_add(&sr->hist, &use->ev[n], 1);
+		if (use == &ss)
+			replay_steps_free(&ss);
+	}
+	sr->hist_at = to;
+}
+
 static void
 replay_history(void *ctx, struct evlog *log)
 {
 	struct source_replay *sr = ctx;
-	size_t i, n;
+	size_t i;
 
-	for (i = 0; i < sr->nsteps; i++) {
-		const struct replay_steps *ss = &sr->steps[i];
-
-		/* a chunk's events are in step order */
-		for (n = 0; n < ss->nev && ss->ev[n].step < sr->cursor; n++)
+	if (sr->cursor < sr->hist_at) {
+		/* back: from the last mark at or before the cursor */
+		for (i = sr->nmarks; i-- > 0 && sr->mark_at[i] > sr->cursor;)
 			;
-		evlog_add(log, ss->ev, n);
+		if (i < sr->nmarks) {
+			evlog_copy(&sr->hist, &sr->mark[i]);
+			sr->hist_at = sr->mark_at[i];
+		} else {
+			evlog_clear(&sr->hist);
+			sr->hist_at = LONG_MIN;
+		}
 	}
+	if (sr->cursor > sr->hist_at)
+		advance_history(sr, sr->cursor);
+	evlog_copy(log, &sr->hist);
 }
 
 int
@@ -458,9 +596,11 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 	}
 	sr->built = true;
 	n3 = 3 * (size_t)sr->net.cl.n;
+	sr->evs_of = SIZE_MAX;
 	if ((sr->y = malloc(2 * n3 * sizeof *sr->y)) == NULL ||
 	    (sr->prev = malloc(n3 * sizeof *sr->prev)) == NULL ||
-	    (sr->accel = malloc(n3 * sizeof *sr->accel)) == NULL) {
+	    (sr->accel = malloc(n3 * sizeof *sr->accel)) == NULL ||
+	    evlog_init(&sr->hist, sr->net.cl.n) != 0) {
 		err_set(err, "%s: out of memory", path);
 		goto fail;
 	}
@@ -505,8 +645,11 @@ source_replay_close(struct source_replay *sr)
 	}
 	free(sr->y);
 	for (i = 0; i < sr->nsteps; i++)
-		replay_steps_free(&sr->steps[i]);
+		free(sr->steps[i].s);
 	free(sr->steps);
+	replay_steps_free(&sr->evs);
+	evlog_free(&sr->hist);
+	drop_marks(sr);
 	free(sr->view);
 	free(sr->prev);
 	free(sr->accel);

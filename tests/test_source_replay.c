@@ -44,6 +44,78 @@ open_tablecloth(struct source *src, struct source_replay *sr)
 		fail_msg("source_replay_open: %s", err.msg);
 }
 
+/* The history the source gives at cursor step c (every event of the steps
+ * before c, per node the latest EVLOG_PER_NODE and the count), against
+ * one made from every steps chunk of the file, read whole. */
+static void
+history_equals_truth(struct source *src, const struct replay *rp, int nodes, long c)
+{
+	struct evlog got, want;
+	struct drape_err err;
+	size_t i, k;
+	int p;
+
+	assert_int_equal(evlog_init(&got, nodes), 0);
+	assert_int_equal(evlog_init(&want, nodes), 0);
+	src->history(src->ctx, &got);
+	for (i = 0; i < rp->nchunks; i++) {
+		struct replay_steps ss;
+
+		if (rp->chunk[i].kind != REPLAY_STEPS)
+			continue;
+		assert_int_equal(replay_read_steps(rp, i, &ss, &err), 0);
+		for (k = 0; k < ss.nev && ss.ev[k].step < c; k++)
+			evlog_add(&want, &ss.ev[k], 1);
+		replay_steps_free(&ss);
+	}
+	assert_int_equal(got.total, want.total);
+	for (p = 0; p < nodes; p++) {
+		int j;
+
+		assert_int_equal(got.count[p], want.count[p]);
+		for (j = 0; j < EVLOG_PER_NODE; j++) {
+			const struct contact_event *a = evlog_get(&got, p, j), *b = evlog_get(&want, p, j);
+
+			assert_true((a == NULL) == (b == NULL));
+			if (a != NULL)
+				assert_memory_equal(a, b, sizeof *a);
+		}
+	}
+	evlog_free(&got);
+	evlog_free(&want);
+}
+
+/* The history is kept as the cursor moves (forward: carried on; back:
+ * from the nearest mark, source_replay.c), never all the events at once:
+ * at every cursor of a scrambled walk, forward and back, across the
+ * steps chunks, it equals the whole file's. */
+static void
+history_at_any_step(void **state)
+{
+	static const long walk[] = { 0, 151, 1000, 300, 2265, 2264, 257, 255, 256, 1999, 2000, 5,
+	    1500, 0, 2265 };
+	struct source src;
+	struct source_replay sr;
+	struct source_state s;
+	struct replay rp;
+	struct drape_err err;
+	size_t i;
+
+	(void)state;
+	open_tablecloth(&src, &sr);
+	if (replay_open(&rp, TABLECLOTH, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_true(rp.nstep_chunks >= 8);	/* the walk crosses chunks */
+	src.state(src.ctx, &s);
+	for (i = 0; i < sizeof walk / sizeof walk[0]; i++) {
+		assert_true(src.seek(src.ctx, SOURCE_GOTO, walk[i]) || walk[i] == cursor(&src));
+		assert_int_equal(cursor(&src), walk[i]);
+		history_equals_truth(&src, &rp, s.cl->n, walk[i]);
+	}
+	replay_close(&rp);
+	source_replay_close(&sr);
+}
+
 static void
 keyframes_and_ends(void **state)
 {
@@ -434,6 +506,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(keyframes_and_ends),
+		cmocka_unit_test(history_at_any_step),
 		cmocka_unit_test(frames_and_steps),
 		cmocka_unit_test(events_stats_and_state),
 		cmocka_unit_test(screen_of_a_replay),

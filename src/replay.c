@@ -934,6 +934,69 @@ inflate_chunk(const struct replay *r, const struct replay_chunk *c, unsigned cha
 	return 0;
 }
 
+/* The first want bytes (at most its raw length) that chunk c inflates to,
+ * into a new buffer: the statistics at the head of a steps chunk without
+ * reading or inflating the events behind them. The compressed bytes are
+ * read a block at a time, as inflate asks for them; the chunk's CRC was
+ * checked at the open (and is again when the whole chunk is read). */
+static int
+inflate_head(const struct replay *r, const struct replay_chunk *c, size_t want,
+    unsigned char **out, struct drape_err *err)
+{
+	enum { BLOCK = 65536 };
+	struct replay_chunk_header h;
+	unsigned char *z, *raw;
+	uint64_t off = c->offset + sizeof h, left = c->comp_len;
+	z_stream zs;
+	int rc = Z_OK;
+
+	*out = NULL;
+	if (want > c->raw_len)
+		want = c->raw_len;
+	if (read_at(r, c->offset, &h, sizeof h) != 0 || h.kind != c->kind ||
+	    h.raw_len != c->raw_len || h.comp_len != c->comp_len) {
+		err_set(err, "chunk %zu: changed or unreadable since the file was opened", c->ordinal);
+		return -1;
+	}
+	if ((z = malloc(BLOCK)) == NULL || (raw = malloc(want + 1)) == NULL) {
+		free(z);
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		return -1;
+	}
+	memset(&zs, 0, sizeof zs);
+	if (inflateInit(&zs) != Z_OK) {
+		free(z);
+		free(raw);
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		return -1;
+	}
+	zs.next_out = raw;
+	zs.avail_out = (uInt)want;
+	while (zs.avail_out > 0 && rc == Z_OK) {
+		if (zs.avail_in == 0) {
+			size_t n = left < BLOCK ? (size_t)left : BLOCK;
+
+			if (n == 0 || read_at(r, off, z, n) != 0)
+				break;
+			off += n;
+			left -= n;
+			zs.next_in = z;
+			zs.avail_in = (uInt)n;
+		}
+		rc = inflate(&zs, Z_NO_FLUSH);
+	}
+	inflateEnd(&zs);
+	free(z);
+	if (zs.avail_out > 0) {
+		free(raw);
+		err_set(err, "chunk %zu: does not inflate to its stated %u bytes", c->ordinal,
+		    c->raw_len);
+		return -1;
+	}
+	*out = raw;
+	return 0;
+}
+
 static char *
 take_string(const unsigned char *p, size_t n)
 {
@@ -1334,6 +1397,65 @@ replay_keyframe_free(struct replay_keyframe *kf)
 {
 	free(kf->y);
 	memset(kf, 0, sizeof *kf);
+}
+
+int
+replay_read_step_stats(const struct replay *r, size_t i, struct replay_steps *ss,
+    struct drape_err *err)
+{
+	const struct replay_chunk *c = &r->chunk[i];
+	size_t k = c->count, nev, j, col, total = 0;
+	unsigned char *p;
+	uint64_t *words = NULL;
+	int rc = -1;
+
+	memset(ss, 0, sizeof *ss);
+	if (c->kind != REPLAY_STEPS || c->first_step > (uint64_t)LONG_MAX - k) {
+		err_set(err, "chunk %zu: not steps", c->ordinal);
+		return -1;
+	}
+	/* check_chunk_header bounded raw_len, and so k */
+	if (inflate_head(r, c, 8 + 8 * NSTAT * k, &p, err) != 0)
+		return -1;
+	nev = get32(p);
+	if (8 + 8 * NSTAT * (uint64_t)k + EVENT_BYTES * (uint64_t)nev != c->raw_len) {
+		err_set(err, "chunk %zu: %zu events do not fill its %u bytes", c->ordinal, nev,
+		    c->raw_len);
+		goto out;
+	}
+	ss->count = k;
+	ss->nev = nev;
+	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL ||
+	    (words = malloc(k * NSTAT * sizeof *words)) == NULL) {
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		goto out;
+	}
+	for (col = 0; col < NSTAT; col++)
+		unpack_col64(p + 8 + 8 * col * k, k, words + col * k);
+	for (j = 0; j < k; j++) {
+		uint64_t row[NSTAT];
+
+		for (col = 0; col < NSTAT; col++)
+			row[col] = words[col * k + j];
+		stat_from_words(row, &ss->s[j]);
+		if (ss->s[j].step != (long)(c->first_step + j) || ss->s[j].nev < 0 ||
+		    (uint64_t)ss->s[j].nev > nev - total) {
+			err_set(err, "chunk %zu: step %zu's record is inconsistent", c->ordinal, j);
+			goto out;
+		}
+		total += (size_t)ss->s[j].nev;
+	}
+	if (total != nev) {
+		err_set(err, "chunk %zu: its events do not match its steps", c->ordinal);
+		goto out;
+	}
+	rc = 0;
+out:
+	free(p);
+	free(words);
+	if (rc != 0)
+		replay_steps_free(ss);
+	return rc;
 }
 
 void

@@ -219,6 +219,11 @@ int replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
     struct drape_err *err);
 void replay_frames_free(struct replay_frames *fr);
 void replay_keyframe_free(struct replay_keyframe *kf);
+/* A steps chunk's statistics only (ss->ev NULL, ss->nev its count): the
+ * head of the chunk inflated, not its events, which are most of a run's
+ * file. The events are checked when replay_read_steps reads them. */
+int replay_read_step_stats(const struct replay *r, size_t i, struct replay_steps *ss,
+    struct drape_err *err);
 void replay_steps_free(struct replay_steps *ss);
 
 /* The intact keyframe chunk with the largest step <= step (step < 0: the

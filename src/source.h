@@ -150,9 +150,8 @@ struct source_replay {
 	size_t evs_of;		/* its index in steps, or SIZE_MAX for none */
 	struct evlog hist;	/* every event of the steps before hist_at */
 	long hist_at;
-	struct evlog *mark;	/* hist at the first step of some chunks */
-	long *mark_at;
-	size_t nmarks;
+	struct evlog *mark;	/* per steps chunk: hist at its first step, or empty */
+	size_t mark_every;	/* chunks between marks; 0: none */
 	size_t nskipped;	/* chunks that would not decode */
 	long first, last;	/* the steps the cursor goes to */
 	long cursor;		/* the state step shown */

@@ -8,13 +8,14 @@
  * Memory is bounded by a few chunks, not by the run: a long run's events
  * are most of its file (6 million, 160 MB, on the 2 s tablecloth), and
  * keeping them all decoded took 576 MB to show one frame of it. The open
- * reads every chunk once: it keeps the steps' statistics (for the totals
- * at any step; a few hundred bytes a step) and drops their events. The
- * cursor's events are read again from their chunk (the last one kept);
- * the inspector's history (every event before the cursor, per node the
- * latest few) is carried forward as the cursor moves forward, and going
- * back restarts it from the nearest mark: the history at the first step
- * of every so many chunks, taken at the open, at most MARK_BYTES in all.
+ * reads the frames and keyframes and only the head of each steps chunk:
+ * the steps' statistics (for the totals at any step; a few hundred bytes
+ * a step), not their events. The cursor's events are read from their
+ * chunk (the last one kept); the inspector's history (every event before
+ * the cursor, per node the latest few) is carried forward as the cursor
+ * moves forward, and going back restarts it from the nearest mark: the
+ * history at the first step of every so many chunks, taken as the history
+ * first passes there, at most MARK_BYTES in all.
  * Frames and keyframes are read when shown, the last frames chunk kept. */
 #include <limits.h>
 #include <stdint.h>
@@ -79,59 +80,35 @@ add_view(struct source_replay *sr, size_t *cap, long step, double t, size_t chun
 	return 0;
 }
 
-/* The open's pass over a steps chunk ss, the next in the file: a mark of
- * the history before it every so many chunks, then its events logged. The
- * marks hold only while the chunks come in step order (drape writes them
- * so); else *in_order goes false and they are dropped at the end. 0, or
- * -1 out of memory. */
-static int
-mark_and_log(struct source_replay *sr, const struct replay_steps *ss, bool *in_order)
-{
-	size_t every, snap = (size_t)sr->net.cl.n *
-	    (EVLOG_PER_NODE * sizeof(struct contact_event) + sizeof(long));
-	size_t most = MARK_BYTES / snap > 0 ? MARK_BYTES / snap : 1;
-
-	if (!*in_order)
-		return 0;
-	if (sr->nsteps > 0 && ss->s[0].step <= sr->steps[sr->nsteps - 1].s[
-	    sr->steps[sr->nsteps - 1].count - 1].step) {
-		*in_order = false;
-		return 0;
-	}
-	every = (sr->rp.nstep_chunks + most - 1) / most;
-	if (every < 1)
-		every = 1;
-	if (sr->nsteps % every == 0) {
-		struct evlog *m = realloc(sr->mark, (sr->nmarks + 1) * sizeof *m);
-		long *at;
-
-		if (m == NULL)
-			return -1;
-		sr->mark = m;
-		if ((at = realloc(sr->mark_at, (sr->nmarks + 1) * sizeof *at)) == NULL)
-			return -1;
-		sr->mark_at = at;
-		if (evlog_init(&m[sr->nmarks], sr->net.cl.n) != 0)
-			return -1;
-		evlog_copy(&m[sr->nmarks], &sr->hist);
-		at[sr->nmarks++] = ss->s[0].step;
-	}
-	evlog_add(&sr->hist, ss->ev, ss->nev);
-	return 0;
-}
-
 static void
 drop_marks(struct source_replay *sr)
 {
 	size_t i;
 
-	for (i = 0; i < sr->nmarks; i++)
+	for (i = 0; sr->mark != NULL && i < sr->nsteps; i++)
 		evlog_free(&sr->mark[i]);
 	free(sr->mark);
-	free(sr->mark_at);
 	sr->mark = NULL;
-	sr->mark_at = NULL;
-	sr->nmarks = 0;
+	sr->mark_every = 0;
+}
+
+/* Room for a mark at every mark_every-th steps chunk, where the chunks
+ * are in step order and do not overlap (drape writes them so); no marks
+ * otherwise. 0, or -1 out of memory. */
+static int
+plan_marks(struct source_replay *sr)
+{
+	size_t snap = (size_t)sr->net.cl.n *
+	    (EVLOG_PER_NODE * sizeof(struct contact_event) + sizeof(long));
+	size_t most = MARK_BYTES / snap > 0 ? MARK_BYTES / snap : 1, j;
+
+	for (j = 1; j < sr->nsteps; j++)
+		if (sr->steps[j].s[0].step <= sr->steps[j - 1].s[sr->steps[j - 1].count - 1].step)
+			return 0;
+	if (sr->nsteps == 0 || (sr->mark = calloc(sr->nsteps, sizeof *sr->mark)) == NULL)
+		return sr->nsteps == 0 ? 0 : -1;
+	sr->mark_every = (sr->nsteps + most - 1) / most;
+	return 0;
 }
 
 /* Every intact chunk decoded once: the frames' and keyframes' steps and
@@ -141,7 +118,6 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 {
 	size_t i, k, vcap = 0, scap = 0, j;
 	struct drape_err ignored;
-	bool in_order = true;
 
 	for (i = 0; i < sr->rp.nchunks; i++) {
 		const struct replay_chunk *c = &sr->rp.chunk[i];
@@ -171,7 +147,7 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 			}
 			replay_keyframe_free(&kf);
 		} else if (c->kind == REPLAY_STEPS) {
-			if (replay_read_steps(&sr->rp, i, &ss, &ignored) != 0) {
+			if (replay_read_step_stats(&sr->rp, i, &ss, &ignored) != 0) {
 				sr->nskipped++;
 				continue;
 			}
@@ -190,11 +166,7 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 				sr->steps = p;
 				scap = ncap;
 			}
-			if (mark_and_log(sr, &ss, &in_order) != 0) {
-				replay_steps_free(&ss);
-				goto oom;
-			}
-			/* the statistics kept, the events dropped */
+			/* the statistics kept */
 			sr->steps[sr->nsteps++] = (struct replay_stepchunk){ i, ss.count, ss.s };
 			ss.s = NULL;
 			replay_steps_free(&ss);
@@ -211,11 +183,9 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 	sr->nviews = j + 1;
 	if (sr->nsteps > 0)
 		qsort(sr->steps, sr->nsteps, sizeof *sr->steps, steps_order);
-	if (!in_order)
-		drop_marks(sr);
-	/* the history starts over from the marks (or the start) */
-	evlog_clear(&sr->hist);
-	sr->hist_at = LONG_MIN;
+	if (plan_marks(sr) != 0)
+		goto oom;
+	sr->hist_at = LONG_MIN;	/* nothing logged yet */
 	return 0;
 oom:
 	err_set(err, "%s: out of memory", sr->file);
@@ -533,6 +503,11 @@ advance_history(struct source_replay *sr, long to)
 
 		if (sc->s[sc->count - 1].step < sr->hist_at || sc->s[0].step >= to)
 			continue;
+		/* the chunks before this one are logged to its first step: a
+		 * mark, if one is due here (and memory allows) */
+		if (sr->mark_every > 0 && j % sr->mark_every == 0 && sr->mark[j].n == 0 &&
+		    sc->s[0].step >= sr->hist_at && evlog_init(&sr->mark[j], sr->net.cl.n) == 0)
+			evlog_copy(&sr->mark[j], &sr->hist);
 		if (j == sr->evs_of)
 			use = &sr->evs;
 		else if (replay_read_steps(&sr->rp, sc->chunk, &ss, &ignored) != 0)
@@ -555,11 +530,13 @@ replay_history(void *ctx, struct evlog *log)
 
 	if (sr->cursor < sr->hist_at) {
 		/* back: from the last mark at or before the cursor */
-		for (i = sr->nmarks; i-- > 0 && sr->mark_at[i] > sr->cursor;)
-			;
-		if (i < sr->nmarks) {
+		for (i = sr->nsteps; i-- > 0;)
+			if (sr->mark != NULL && sr->mark[i].n > 0 &&
+			    sr->steps[i].s[0].step <= sr->cursor)
+				break;
+		if (i < sr->nsteps) {
 			evlog_copy(&sr->hist, &sr->mark[i]);
-			sr->hist_at = sr->mark_at[i];
+			sr->hist_at = sr->steps[i].s[0].step;
 		} else {
 			evlog_clear(&sr->hist);
 			sr->hist_at = LONG_MIN;

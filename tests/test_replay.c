@@ -373,8 +373,25 @@ read_all(const struct replay *r)
 		if (r->chunk[i].kind == REPLAY_KEYFRAME &&
 		    (rc = replay_read_keyframe(r, i, &kf, &err)) == 0)
 			replay_keyframe_free(&kf);
-		if (r->chunk[i].kind == REPLAY_STEPS && (rc = replay_read_steps(r, i, &ss, &err)) == 0)
+		if (r->chunk[i].kind == REPLAY_STEPS && (rc = replay_read_steps(r, i, &ss, &err)) == 0) {
+			struct replay_steps head;
+
+			/* the statistics alone, as the viewer reads them: the same */
+			if ((rc = replay_read_step_stats(r, i, &head, &err)) == 0) {
+				assert_int_equal(head.count, ss.count);
+				assert_int_equal(head.nev, ss.nev);
+				assert_null(head.ev);
+				for (size_t j = 0; j < ss.count; j++) {
+					assert_int_equal(head.s[j].step, ss.s[j].step);
+					assert_int_equal(head.s[j].nev, ss.s[j].nev);
+					assert_true(head.s[j].t == ss.s[j].t && head.s[j].dt == ss.s[j].dt);
+					assert_memory_equal(head.s[j].col.n, ss.s[j].col.n,
+					    sizeof ss.s[j].col.n);
+				}
+				replay_steps_free(&head);
+			}
 			replay_steps_free(&ss);
+		}
 		if (rc != 0)
 			fail_msg("chunk %zu: %s", i, err.msg);
 	}

@@ -38,6 +38,8 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 				replay_keyframe_free(&kf);
 			break;
 		case REPLAY_STEPS:
+			if (replay_read_step_stats(&r, i, &ss, &err) == 0)
+				replay_steps_free(&ss);
 			if (replay_read_steps(&r, i, &ss, &err) == 0)
 				replay_steps_free(&ss);
 			break;

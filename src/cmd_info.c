@@ -7,7 +7,11 @@
 #include "integrate.h"
 #include "replay.h"
 
-/* Events and the last step's time, from every readable steps chunk. */
+/* Events and the last step's time, from every readable steps chunk's
+ * statistics: its head, not its events, which are most of a long run's
+ * file (the 166 MB tablecloth: 4.1 s to inflate them all, 0.3 s not). A
+ * chunk whose events do not decode despite its CRC is found by events,
+ * export and replay, which read them. */
 static void
 count_events(const struct replay *r, long *nev, double *t_end, size_t *unreadable)
 {
@@ -21,7 +25,7 @@ count_events(const struct replay *r, long *nev, double *t_end, size_t *unreadabl
 	for (i = 0; i < r->nchunks; i++) {
 		if (r->chunk[i].kind != REPLAY_STEPS)
 			continue;
-		if (replay_read_steps(r, i, &ss, &err) != 0) {
+		if (replay_read_step_stats(r, i, &ss, &err) != 0) {
 			(*unreadable)++;
 			continue;
 		}

@@ -26,7 +26,8 @@
 #   8. the step: fast (bvh) at 5 to 160 ms on both scenes, timed and
 #      audited on every frame: the largest step before it misbehaves.
 # The TUI's speed and the side-by-side runs of Blender and Bullet are not
-# measured here (the last lines say so). Timing runs one job at a time.
+# measured here (the last lines say so; the latter: bench/peers.sh).
+# Timing runs one job at a time.
 #
 # Writes fast.csv (whole runs), fast-scaling.csv, fast-refine.csv,
 # fast-steps.csv and
@@ -66,8 +67,6 @@ echo "machine: $ncpu cores, ${cpu:-unknown cpu}; load $(load)"
 echo "median of $runs rounds; in each round the integrators run one after another"
 echo
 
-# wall seconds of a summary on stdin
-wall_of() { awk '/^wall time / { print $3 }'; }
 # centroid x y z, top y, rms horizontal radius about the centroid, of an OBJ
 shape_of() {
 	awk '$1 == "v" { n++; x[n] = $2; y[n] = $3; z[n] = $4; sx += $2; sy += $3; sz += $4
@@ -184,21 +183,6 @@ if want 4; then
 fi
 
 # ---- 5 and 6: the peers' table ----
-# n x n nodes over 0.24 m at y = 0.20 m, the 0.1 m cube at (0.07, 0.05,
-# -0.05) (peers.md's z-up figures turned to drape's y up), E*t = 50 N/m,
-# thickness a quarter of the spacing, 100 g/m2, friction 0.1, no drag.
-peers_table() { # n bending_uNm integrator
-	awk -v n="$1" -v b="$2" -v m="$3" 'BEGIN {
-		h = 0.24 / (n - 1); t = 0.25 * h
-		printf "[simulation]\nduration = 2 s\ndt = auto\nintegrator = %s\noutput_rate = 50\n", m
-		printf "[cloth]\nnodes = %d %d\nspacing = %.9g m\norigin = -0.12 0.2 -0.12 m\n", n, n, h
-		printf "orientation = +x +z\nweight = 100 g/m2\nthickness = %.9g m\n", t
-		printf "modulus_warp = %.9g Pa\nmodulus_weft = %.9g Pa\nshear_modulus = %.9g Pa\n", 50 / t, 50 / t, 5 / t
-		printf "bending_warp = %g uN*m\nbending_weft = %g uN*m\n", b, b
-		printf "[box]\nmin = 0.02 0 -0.1 m\nmax = 0.12 0.1 0 m\nfriction = 0.1\n"
-		printf "[plane]\npoint = 0 0 0 m\nfriction = 0.1\n"
-		printf "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\nfriction = 0.1\n" }'
-}
 if want 5; then
 	rcsv=$results/fast-refine.csv
 	echo "integrator,nodes,wall_s" >"$rcsv"
@@ -293,4 +277,4 @@ if want 8; then
 	echo
 fi
 echo "not measured here: the TUI at 80 x 24 (target: at least real time), and Blender and"
-echo "Bullet side by side on the peers' scenes (../shared/reference/peers.md has their figures)"
+echo "Bullet side by side on the peers' scenes (bench/peers.sh: make bench-peers)"

@@ -1,6 +1,6 @@
 # Shared by the bench scripts that write to BENCH_RESULTS (sourced, not
 # run): the paths, the scene editor, one timed run, the summary parser,
-# medians, the chart.
+# medians, wall_of, the peers' table, the chart.
 #
 # Environment (see bench/README.md): DRAPE, BENCH_SRCDIR, BENCH_RESULTS,
 # BENCH_RUNS, GNUPLOT.
@@ -152,4 +152,24 @@ median() { # numbers on stdin, one a line, "-" skipped; prints "-" if none
 	}'
 }
 
+# wall seconds of a summary on stdin
+wall_of() { awk '/^wall time / { print $3 }'; }
+
+# peers_table N BENDING_uNm INTEGRATOR > DST: the peers' table
+# (../shared/reference/peers.md; fast.sh, peers.sh): n x n nodes over
+# 0.24 m at y = 0.20 m, the 0.1 m cube at (0.07, 0.05, -0.05) (peers.md's
+# z-up figures turned to drape's y up), E*t = 50 N/m, thickness a quarter
+# of the spacing, 100 g/m2, friction 0.1, no drag.
+peers_table() { # n bending_uNm integrator
+	awk -v n="$1" -v b="$2" -v m="$3" 'BEGIN {
+		h = 0.24 / (n - 1); t = 0.25 * h
+		printf "[simulation]\nduration = 2 s\ndt = auto\nintegrator = %s\noutput_rate = 50\n", m
+		printf "[cloth]\nnodes = %d %d\nspacing = %.9g m\norigin = -0.12 0.2 -0.12 m\n", n, n, h
+		printf "orientation = +x +z\nweight = 100 g/m2\nthickness = %.9g m\n", t
+		printf "modulus_warp = %.9g Pa\nmodulus_weft = %.9g Pa\nshear_modulus = %.9g Pa\n", 50 / t, 50 / t, 5 / t
+		printf "bending_warp = %g uN*m\nbending_weft = %g uN*m\n", b, b
+		printf "[box]\nmin = 0.02 0 -0.1 m\nmax = 0.12 0.1 0 m\nfriction = 0.1\n"
+		printf "[plane]\npoint = 0 0 0 m\nfriction = 0.1\n"
+		printf "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\nfriction = 0.1\n" }'
+}
 . "$here/plot.sh"

@@ -58,9 +58,6 @@ struct broad_want {
 
 struct bvh_node {
 	double box[6];
-	/* a cone holding every normal of the subtree's triangles over the
-	 * step: axis and cosine of its half-angle (< -1: no cone) */
-	double axis[3], cos_half;
 	int left, right;	/* children, or -1 for a leaf */
 	int tri;		/* a leaf's triangle */
 };

@@ -1318,39 +1318,43 @@ unpack_events(const unsigned char *in, size_t nev, uint64_t first_step, uint64_t
 	return 0;
 }
 
-int
-replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
+/* Whether chunk c is not a steps chunk one can number (with a message). */
+static bool
+not_steps(const struct replay_chunk *c, struct drape_err *err)
+{
+	if (c->kind == REPLAY_STEPS && c->first_step <= (uint64_t)LONG_MAX - c->count)
+		return false;
+	err_set(err, "chunk %zu: not steps", c->ordinal);
+	return true;
+}
+
+/* The events a steps chunk's head p says it holds, checked against its
+ * length: 0, or -1 with a message. */
+static int
+events_in(const struct replay_chunk *c, const unsigned char *p, size_t *nev,
     struct drape_err *err)
 {
-	const struct replay_chunk *c = &r->chunk[i];
-	size_t k = c->count, nev, j, col, total = 0;
-	unsigned char *p;
-	uint64_t *words = NULL, *tmp64 = NULL;
-	uint32_t *tmp32 = NULL;
-	int rc = -1;
+	*nev = get32(p);
+	if (8 + 8 * NSTAT * (uint64_t)c->count + EVENT_BYTES * (uint64_t)*nev == c->raw_len)
+		return 0;
+	err_set(err, "chunk %zu: %zu events do not fill its %u bytes", c->ordinal, *nev,
+	    c->raw_len);
+	return -1;
+}
 
-	memset(ss, 0, sizeof *ss);
-	if (c->kind != REPLAY_STEPS || c->first_step > (uint64_t)LONG_MAX - k) {
-		err_set(err, "chunk %zu: not steps", c->ordinal);
-		return -1;
-	}
-	if (inflate_chunk(r, c, &p, err) != 0)
-		return -1;
-	nev = get32(p);
-	if (8 + 8 * NSTAT * (uint64_t)k + EVENT_BYTES * (uint64_t)nev != c->raw_len) {
-		err_set(err, "chunk %zu: %zu events do not fill its %u bytes", c->ordinal, nev,
-		    c->raw_len);
-		goto out;
-	}
-	ss->count = k;
-	ss->nev = nev;
-	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL ||
-	    (ss->ev = malloc((nev + 1) * sizeof *ss->ev)) == NULL ||
-	    (words = malloc(k * NSTAT * sizeof *words)) == NULL ||
-	    (tmp32 = malloc((nev + 1) * sizeof *tmp32)) == NULL ||
-	    (tmp64 = malloc((nev + 1) * sizeof *tmp64)) == NULL) {
+/* Steps chunk c's statistics from its inflated head p (nev events in all)
+ * into ss->s, each step checked against the chunk: 0, or -1 with a
+ * message. */
+static int
+decode_step_stats(const struct replay_chunk *c, const unsigned char *p, size_t nev,
+    struct replay_steps *ss, struct drape_err *err)
+{
+	size_t k = c->count, j, col, total = 0;
+	uint64_t *words = malloc(k * NSTAT * sizeof *words);
+
+	if (words == NULL) {
 		err_set(err, "chunk %zu: out of memory", c->ordinal);
-		goto out;
+		return -1;
 	}
 	for (col = 0; col < NSTAT; col++)
 		unpack_col64(p + 8 + 8 * col * k, k, words + col * k);
@@ -1363,21 +1367,89 @@ replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
 		if (ss->s[j].step != (long)(c->first_step + j) || ss->s[j].nev < 0 ||
 		    (uint64_t)ss->s[j].nev > nev - total) {
 			err_set(err, "chunk %zu: step %zu's record is inconsistent", c->ordinal, j);
-			goto out;
+			free(words);
+			return -1;
 		}
 		total += (size_t)ss->s[j].nev;
 	}
-	if (total != nev || unpack_events(p + 8 + 8 * NSTAT * k, nev, c->first_step, k,
-	    r->hdr.nodes, ss->ev, tmp32, tmp64) != 0) {
+	free(words);
+	if (total != nev) {
+		err_set(err, "chunk %zu: its events do not match its steps", c->ordinal);
+		return -1;
+	}
+	return 0;
+}
+
+int
+replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
+    struct drape_err *err)
+{
+	const struct replay_chunk *c = &r->chunk[i];
+	size_t k = c->count, nev;
+	unsigned char *p;
+	uint64_t *tmp64 = NULL;
+	uint32_t *tmp32 = NULL;
+	int rc = -1;
+
+	memset(ss, 0, sizeof *ss);
+	if (not_steps(c, err))
+		return -1;
+	if (inflate_chunk(r, c, &p, err) != 0)
+		return -1;
+	if (events_in(c, p, &nev, err) != 0)
+		goto out;
+	ss->count = k;
+	ss->nev = nev;
+	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL ||
+	    (ss->ev = malloc((nev + 1) * sizeof *ss->ev)) == NULL ||
+	    (tmp32 = malloc((nev + 1) * sizeof *tmp32)) == NULL ||
+	    (tmp64 = malloc((nev + 1) * sizeof *tmp64)) == NULL) {
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		goto out;
+	}
+	if (decode_step_stats(c, p, nev, ss, err) != 0)
+		goto out;
+	if (unpack_events(p + 8 + 8 * NSTAT * k, nev, c->first_step, k, r->hdr.nodes, ss->ev,
+	    tmp32, tmp64) != 0) {
 		err_set(err, "chunk %zu: its events do not match its steps", c->ordinal);
 		goto out;
 	}
 	rc = 0;
 out:
 	free(p);
-	free(words);
 	free(tmp32);
 	free(tmp64);
+	if (rc != 0)
+		replay_steps_free(ss);
+	return rc;
+}
+
+int
+replay_read_step_stats(const struct replay *r, size_t i, struct replay_steps *ss,
+    struct drape_err *err)
+{
+	const struct replay_chunk *c = &r->chunk[i];
+	size_t k = c->count, nev;
+	unsigned char *p;
+	int rc = -1;
+
+	memset(ss, 0, sizeof *ss);
+	if (not_steps(c, err))
+		return -1;
+	/* check_chunk_header bounded raw_len from below by the head */
+	if (inflate_head(r, c, 8 + 8 * NSTAT * k, &p, err) != 0)
+		return -1;
+	if (events_in(c, p, &nev, err) != 0)
+		goto out;
+	ss->count = k;
+	ss->nev = nev;
+	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL) {
+		err_set(err, "chunk %zu: out of memory", c->ordinal);
+		goto out;
+	}
+	rc = decode_step_stats(c, p, nev, ss, err);
+out:
+	free(p);
 	if (rc != 0)
 		replay_steps_free(ss);
 	return rc;
@@ -1397,65 +1469,6 @@ replay_keyframe_free(struct replay_keyframe *kf)
 {
 	free(kf->y);
 	memset(kf, 0, sizeof *kf);
-}
-
-int
-replay_read_step_stats(const struct replay *r, size_t i, struct replay_steps *ss,
-    struct drape_err *err)
-{
-	const struct replay_chunk *c = &r->chunk[i];
-	size_t k = c->count, nev, j, col, total = 0;
-	unsigned char *p;
-	uint64_t *words = NULL;
-	int rc = -1;
-
-	memset(ss, 0, sizeof *ss);
-	if (c->kind != REPLAY_STEPS || c->first_step > (uint64_t)LONG_MAX - k) {
-		err_set(err, "chunk %zu: not steps", c->ordinal);
-		return -1;
-	}
-	/* check_chunk_header bounded raw_len, and so k */
-	if (inflate_head(r, c, 8 + 8 * NSTAT * k, &p, err) != 0)
-		return -1;
-	nev = get32(p);
-	if (8 + 8 * NSTAT * (uint64_t)k + EVENT_BYTES * (uint64_t)nev != c->raw_len) {
-		err_set(err, "chunk %zu: %zu events do not fill its %u bytes", c->ordinal, nev,
-		    c->raw_len);
-		goto out;
-	}
-	ss->count = k;
-	ss->nev = nev;
-	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL ||
-	    (words = malloc(k * NSTAT * sizeof *words)) == NULL) {
-		err_set(err, "chunk %zu: out of memory", c->ordinal);
-		goto out;
-	}
-	for (col = 0; col < NSTAT; col++)
-		unpack_col64(p + 8 + 8 * col * k, k, words + col * k);
-	for (j = 0; j < k; j++) {
-		uint64_t row[NSTAT];
-
-		for (col = 0; col < NSTAT; col++)
-			row[col] = words[col * k + j];
-		stat_from_words(row, &ss->s[j]);
-		if (ss->s[j].step != (long)(c->first_step + j) || ss->s[j].nev < 0 ||
-		    (uint64_t)ss->s[j].nev > nev - total) {
-			err_set(err, "chunk %zu: step %zu's record is inconsistent", c->ordinal, j);
-			goto out;
-		}
-		total += (size_t)ss->s[j].nev;
-	}
-	if (total != nev) {
-		err_set(err, "chunk %zu: its events do not match its steps", c->ordinal);
-		goto out;
-	}
-	rc = 0;
-out:
-	free(p);
-	free(words);
-	if (rc != 0)
-		replay_steps_free(ss);
-	return rc;
 }
 
 void

@@ -992,7 +992,9 @@ bvh_sort(struct broad *b, const struct geom *g)
 static int
 find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_want *want)
 {
-	double skin = GRID_SKIN * cell;
+	/* no skin: the grid's keeps its pairs over steps; these are found
+	 * anew each step, and a wider box only adds pairs to test */
+	double skin = 0;
 	int v, k, i;
 	size_t e;
 

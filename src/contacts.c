@@ -1,5 +1,6 @@
 /* contacts.c: the fast path's contacts inside a step (see contacts.h). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -168,10 +169,42 @@ add_pair(struct contacts *ct, const struct contact_pair *cp)
 	return 0;
 }
 
+/* Whether the boxes of the pair's two sides overlap: each vertex's box of
+ * the step (collide_candidates: its predicted path, widened), a side's the
+ * union of its vertices'. Every broad phase finds at least the pairs whose
+ * boxes overlap, some more (grid: whatever shares a cube); the pairs kept
+ * are those in reach among these, so that which broad phase found them
+ * does not change the run. */
+static bool
+boxes_overlap(const struct collide *col, const struct contact_pair *cp)
+{
+	int first = cp->other >= 0 ? 1 : 2, k, a;
+	double lo[2][3], hi[2][3];
+
+	for (k = 0; k < 4; k++) {
+		const double *b = col->box + 6 * (size_t)cp->vert[k];
+		int side = k >= first;
+
+		for (a = 0; a < 3; a++) {
+			if (k == 0 || k == first) {
+				lo[side][a] = b[a];
+				hi[side][a] = b[3 + a];
+			} else {
+				lo[side][a] = fmin(lo[side][a], b[a]);
+				hi[side][a] = fmax(hi[side][a], b[3 + a]);
+			}
+		}
+	}
+	for (a = 0; a < 3; a++)
+		if (lo[0][a] > hi[1][a] || lo[1][a] > hi[0][a])
+			return false;
+	return true;
+}
+
 /* Keeps the pair if it may come within the thickness during the step: its
- * separation at the start, less one and a half times its predicted
- * relative motion (an allowance for the step's accelerations), under a
- * thickness and a quarter. */
+ * boxes overlap, and its separation at the start, less one and a half
+ * times its predicted relative motion (an allowance for the step's
+ * accelerations), is under a thickness and a quarter. */
 static int
 consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp,
     const double *y0, double h)
@@ -181,6 +214,8 @@ consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp
 	vec3 d, disp[4];
 	int k, l;
 
+	if (!boxes_overlap(col, cp))
+		return 0;
 	weights(cp, col, y0, w);
 	d = separation(cp, col, y0, w);
 	dist = v3_len(d);

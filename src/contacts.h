@@ -3,7 +3,9 @@
  *
  * Found once a step, at its start: the broad phase's pairs for the motion
  * the step is predicted to make (collide_candidates), kept where the two
- * sides are within reach of the cloth's thickness during the step. Each
+ * sides' boxes of that motion overlap (so that every broad phase gives the
+ * same pairs) and the sides are within reach of the cloth's thickness
+ * during the step. Each
  * substep (pbd.h) then holds every kept pair at least a thickness apart,
  * on the side it was on at the step's start, pushing both sides by their
  * masses, with Coulomb friction on their relative sliding; a resting or

@@ -14,7 +14,9 @@
 
 #define FRAMES_PER_CHUNK 25	/* half a second at 50 frames/s */
 #define STEPS_PER_CHUNK 256
-#define EVENTS_PER_CHUNK (1u << 18)	/* flush the steps early past this */
+#define EVENTS_PER_CHUNK (1u << 16)	/* flush the steps early past this: a chunk
+					 * decoded (about 12 MB at most) is what the
+					 * replay viewer holds */
 /* Steps chunks are most of a file with contacts, and their columns' low
  * bytes are noise: run-length deflate is faster and smaller than level 1,
  * and level 6 saves only 2 % more for three times the overhead (the whole

@@ -352,6 +352,24 @@ vertex_box(double *bx, const struct geom *g, int v)
 	}
 }
 
+/* Each vertex's box of the step, widened by skin on every side. */
+static void
+fill_allowed(struct broad *b, const struct geom *g, double skin)
+{
+	int v, k;
+
+	for (v = 0; v < g->nv; v++) {
+		double *a = b->allowed + 6 * v;
+
+		box_empty(a);
+		vertex_box(a, g, v);
+		for (k = 0; k < 3; k++) {
+			a[k] -= skin;
+			a[3 + k] += skin;
+		}
+	}
+}
+
 static void
 allowed_box(double *bx, const struct broad *b, int v)
 {
@@ -596,16 +614,7 @@ find_grid(struct broad *b, const struct geom *g, double cell, const struct broad
 	    grow((void **)&b->is_big, &b->is_bigcap, nbox, sizeof *b->is_big) != 0 ||
 	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0)
 		return -1;
-	for (v = 0; v < g->nv; v++) {
-		double *a = b->allowed + 6 * v;
-
-		box_empty(a);
-		vertex_box(a, g, v);
-		for (k = 0; k < 3; k++) {
-			a[k] -= skin;
-			a[3 + k] += skin;
-		}
-	}
+	fill_allowed(b, g, skin);
 	box_empty(region);
 	for (i = 0; i < nbox; i++) {
 		const int *n = i < g->ntri ? g->tri + 3 * i : g->edge + 2 * (i - g->ntri);
@@ -1004,16 +1013,7 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 	    grow((void **)&b->ebox, &b->eboxcap, 6 * (g->nedges + 1), sizeof *b->ebox) != 0)
 		return -1;
 	b->st.cell = cell;
-	for (v = 0; v < g->nv; v++) {
-		double *a = b->allowed + 6 * v;
-
-		box_empty(a);
-		vertex_box(a, g, v);
-		for (k = 0; k < 3; k++) {
-			a[k] -= skin;
-			a[3 + k] += skin;
-		}
-	}
+	fill_allowed(b, g, skin);
 	/* a vertex's query box, widened if asked to the segments from its
 	 * neighbours at step k (as the grid's) */
 	for (v = 0; v < g->nv; v++) {

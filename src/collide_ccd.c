@@ -210,22 +210,6 @@ ccd_vertex_triangle(struct collide *c, long step, double dt, int v, int t, doubl
 	    c->tri_obstacle[t], q);
 }
 
-/* Closest points of segments p0-p1 and q0-q1: parameters s and u. */
-static void
-segment_params(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
-{
-	vec3 d1 = v3_sub(p1, p0), d2 = v3_sub(q1, q0), r = v3_sub(p0, q0);
-	double a = v3_dot(d1, d1), e = v3_dot(d2, d2), f = v3_dot(d2, r);
-	double cc = v3_dot(d1, r), b = v3_dot(d1, d2), den = a * e - b * b;
-
-	*s = den > 0 ? fmin(fmax((b * f - cc * e) / den, 0), 1) : 0;
-	*u = e > 0 ? (b * *s + f) / e : 0;
-	if (*u < 0 || *u > 1) {
-		*u = fmin(fmax(*u, 0), 1);
-		*s = a > 0 ? fmin(fmax((b * *u - cc) / a, 0), 1) : 0;
-	}
-}
-
 static int
 ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, int pass)
 {
@@ -242,7 +226,7 @@ ccd_edges(struct collide *c, long step, double dt, int ea, int eb, double toi, i
 	pa1 = lerp(X0(c, na[1]), X1(c, na[1]), toi);
 	pb0 = lerp(X0(c, nb[0]), X1(c, nb[0]), toi);
 	pb1 = lerp(X0(c, nb[1]), X1(c, nb[1]), toi);
-	segment_params(pa0, pa1, pb0, pb1, &s, &u);
+	v3_closest_on_segments(pa0, pa1, pb0, pb1, &s, &u);
 	q = lerp(pb0, pb1, u);
 	/* The normal: from edge b to edge a at step k, where the two were
 	 * apart. The cross product of the edges is no normal for nearly

@@ -96,22 +96,6 @@ closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, double w[3])
 	w[0] = 1 - w[1] - w[2];
 }
 
-/* Closest points of segments p0-p1 and q0-q1: parameters s and u. */
-static void
-closest_on_segments(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
-{
-	vec3 d1 = v3_sub(p1, p0), d2 = v3_sub(q1, q0), r = v3_sub(p0, q0);
-	double a = v3_dot(d1, d1), e = v3_dot(d2, d2), f = v3_dot(d2, r);
-	double c = v3_dot(d1, r), b = v3_dot(d1, d2), den = a * e - b * b;
-
-	*s = den > 0 ? fmin(fmax((b * f - c * e) / den, 0), 1) : 0;
-	*u = e > 0 ? (b * *s + f) / e : 0;
-	if (*u < 0 || *u > 1) {
-		*u = fmin(fmax(*u, 0), 1);
-		*s = a > 0 ? fmin(fmax((b * *u - c) / a, 0), 1) : 0;
-	}
-}
-
 /* The pair's weights on its four vertices at positions x: the separation
  * is sum w[k] x[k], from the second side to the first. */
 static void
@@ -133,7 +117,7 @@ weights(const struct contact_pair *cp, const struct collide *col, const double *
 	} else {
 		double s, u;
 
-		closest_on_segments(p[0], p[1], p[2], p[3], &s, &u);
+		v3_closest_on_segments(p[0], p[1], p[2], p[3], &s, &u);
 		w[0] = 1 - s;
 		w[1] = s;
 		w[2] = -(1 - u);

@@ -5,8 +5,8 @@
 
 #include "ini.h"
 
-static char *
-trim(char *s)
+char *
+ini_trim(char *s)
 {
 	char *end;
 
@@ -18,15 +18,15 @@ trim(char *s)
 	return s;
 }
 
-static int
-valid_name(const char *s)
+bool
+ini_valid_name(const char *s)
 {
 	if (*s == '\0')
-		return 0;
+		return false;
 	for (; *s != '\0'; s++)
 		if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-')
-			return 0;
-	return 1;
+			return false;
+	return true;
 }
 
 int
@@ -53,7 +53,7 @@ ini_parse(struct ini *ini, const char *name, const char *text, struct drape_err 
 			*nl = '\0';
 		if ((hash = strchr(p, '#')) != NULL)
 			*hash = '\0';
-		s = trim(p);
+		s = ini_trim(p);
 		p = nl != NULL ? nl + 1 : p + strlen(p);
 
 		if (*s == '\0')
@@ -71,13 +71,13 @@ ini_parse(struct ini *ini, const char *name, const char *text, struct drape_err 
 		if (*s == '[') {
 			char *close = strchr(s, ']');
 
-			if (close == NULL || trim(close + 1)[0] != '\0') {
+			if (close == NULL || ini_trim(close + 1)[0] != '\0') {
 				err_set(err, "%s:%d: expected a section header like [cloth]", name, line);
 				goto fail;
 			}
 			*close = '\0';
-			section = trim(s + 1);
-			if (!valid_name(section)) {
+			section = ini_trim(s + 1);
+			if (!ini_valid_name(section)) {
 				err_set(err, "%s:%d: expected a section name of letters, digits, '_' or '-'",
 				    name, line);
 				goto fail;
@@ -95,15 +95,16 @@ ini_parse(struct ini *ini, const char *name, const char *text, struct drape_err 
 			err_set(err, "%s:%d: expected a [section] header before the first key", name, line);
 			goto fail;
 		}
-		if (!valid_name(trim(s))) {
+		if (!ini_valid_name(ini_trim(s))) {
 			err_set(err, "%s:%d: expected a key name before '='", name, line);
 			goto fail;
 		}
-		if (trim(eq + 1)[0] == '\0') {
-			err_set(err, "%s:%d: %s: expected a value after '='", name, line, trim(s));
+		if (ini_trim(eq + 1)[0] == '\0') {
+			err_set(err, "%s:%d: %s: expected a value after '='", name, line, ini_trim(s));
 			goto fail;
 		}
-		ini->e[ini->n++] = (struct ini_entry){ line, section, section_line, trim(s), trim(eq + 1) };
+		ini->e[ini->n++] = (struct ini_entry){ line, section, section_line, ini_trim(s),
+		    ini_trim(eq + 1) };
 next:
 		if (nl == NULL)
 			break;

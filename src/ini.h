@@ -4,6 +4,7 @@
 #ifndef DRAPE_INI_H
 #define DRAPE_INI_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "err.h"
@@ -25,6 +26,12 @@ struct ini {
 
 /* Returns 0, or -1 with "NAME:LINE: ..." in err. */
 int ini_parse(struct ini *ini, const char *name, const char *text, struct drape_err *err);
+
+/* s without its leading and trailing white space (cut in place), and
+ * whether s is a section or key name (letters, digits, '_' and '-'):
+ * the rules of the file, shared with --set (override.c). */
+char *ini_trim(char *s);
+bool ini_valid_name(const char *s);
 void ini_free(struct ini *ini);
 
 #endif

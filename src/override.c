@@ -31,31 +31,6 @@ struct out {
 	bool oom;
 };
 
-static char *
-trim(char *s)
-{
-	char *end;
-
-	while (isspace((unsigned char)*s))
-		s++;
-	end = s + strlen(s);
-	while (end > s && isspace((unsigned char)end[-1]))
-		*--end = '\0';
-	return s;
-}
-
-/* As ini.c takes section and key names. */
-static bool
-valid_name(const char *s)
-{
-	if (*s == '\0')
-		return false;
-	for (; *s != '\0'; s++)
-		if (!isalnum((unsigned char)*s) && *s != '_' && *s != '-')
-			return false;
-	return true;
-}
-
 static int
 parse_spec(struct spec *s, const char *raw, struct drape_err *err)
 {
@@ -73,7 +48,7 @@ parse_spec(struct spec *s, const char *raw, struct drape_err *err)
 	if ((eq = strchr(s->buf, '=')) == NULL)
 		goto malformed;
 	*eq = '\0';
-	sec = trim(s->buf);
+	sec = ini_trim(s->buf);
 	if ((dot = strchr(sec, '.')) == NULL)
 		goto malformed;
 	*dot = '\0';
@@ -89,9 +64,9 @@ parse_spec(struct spec *s, const char *raw, struct drape_err *err)
 		}
 	}
 	s->section = sec;
-	if (!valid_name(s->section) || !valid_name(s->key))
+	if (!ini_valid_name(s->section) || !ini_valid_name(s->key))
 		goto malformed;
-	s->value = trim(eq + 1);
+	s->value = ini_trim(eq + 1);
 	if (s->value[0] == '\0') {
 		err_set(err, "--set %s: expected a value after '='", raw);
 		return -1;

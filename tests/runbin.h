@@ -35,6 +35,30 @@ slurp(const char *path, char *buf, size_t len)
  * test writes; the cmocka group setup and teardown make and remove it. */
 static char dir[] = "/tmp/drape-test-XXXXXX";
 
+/* Writes len bytes of data to dir/name and returns its path, which stays
+ * good for the next 7 files written. */
+static inline const char *
+dir_write(const char *name, const void *data, size_t len)
+{
+	static char path[8][700];
+	static int k;
+	char *p = path[k++ % 8];
+	FILE *f;
+
+	snprintf(p, sizeof path[0], "%s/%s", dir, name);
+	f = fopen(p, "wb");
+	assert_non_null(f);
+	assert_int_equal(fwrite(data, 1, len, f), len);
+	assert_int_equal(fclose(f), 0);
+	return p;
+}
+
+static inline const char *
+dir_write_text(const char *name, const char *text)
+{
+	return dir_write(name, text, strlen(text));
+}
+
 static inline int
 setup(void **state)
 {

@@ -279,20 +279,6 @@ benchmark_queries(void **state)
 	assert_non_null(strstr(r.out, "edge-edge/data_0_0.csv\tseed\t54\tn/a"));
 }
 
-static const char *
-write_file(const char *name, const char *text)
-{
-	static char path[700];
-	FILE *f;
-
-	snprintf(path, sizeof path, "%s/%s", dir, name);
-	f = fopen(path, "w");
-	assert_non_null(f);
-	assert_true(fputs(text, f) >= 0);
-	assert_int_equal(fclose(f), 0);
-	return path;
-}
-
 #define ROW "1,2,3,4,-5,8,1\n"
 #define ROWS4 ROW ROW ROW ROW
 
@@ -313,7 +299,7 @@ malformed_files(void **state)
 
 	(void)state;
 	for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-		const char *path = write_file("vertex-face-bad.csv", bad[i].text);
+		const char *path = dir_write_text("vertex-face-bad.csv", bad[i].text);
 
 		snprintf(args, sizeof args, "ccd '%s'", path);
 		drape(&r, args);
@@ -324,11 +310,11 @@ malformed_files(void **state)
 			    r.status, r.err, where, bad[i].expect);
 	}
 	/* a good file is read; the kind must be known */
-	snprintf(args, sizeof args, "ccd --kind vf '%s'", write_file("q.csv", ROWS4 ROWS4));
+	snprintf(args, sizeof args, "ccd --kind vf '%s'", dir_write_text("q.csv", ROWS4 ROWS4));
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
 	assert_non_null(strstr(r.out, "\tccd\t1\t"));
-	snprintf(args, sizeof args, "ccd '%s'", write_file("q.csv", ROWS4 ROWS4));
+	snprintf(args, sizeof args, "ccd '%s'", dir_write_text("q.csv", ROWS4 ROWS4));
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
 	assert_non_null(strstr(r.err, "--kind"));

@@ -17,27 +17,13 @@
 
 
 
-static const char *
-write_scene(const char *name, const char *text)
-{
-	static char path[700];
-	FILE *f;
-
-	snprintf(path, sizeof path, "%s/%s", dir, name);
-	f = fopen(path, "w");
-	assert_non_null(f);
-	assert_true(fputs(text, f) >= 0);
-	assert_int_equal(fclose(f), 0);
-	return path;
-}
-
 /* Writes a scene and runs "drape run --headless" on it. */
 static void
 run_text(struct result *r, const char *name, const char *text)
 {
 	char args[800];
 
-	snprintf(args, sizeof args, "run --headless '%s'", write_scene(name, text));
+	snprintf(args, sizeof args, "run --headless '%s'", dir_write_text(name, text));
 	drape(r, args);
 }
 
@@ -156,7 +142,7 @@ bad_scenes_exit_2(void **state)
 	(void)state;
 	for (i = 0; i < sizeof bad_cases / sizeof bad_cases[0]; i++) {
 		const struct bad_case *c = &bad_cases[i];
-		const char *path = write_scene("bad.scene", c->text);
+		const char *path = dir_write_text("bad.scene", c->text);
 		char args[800], where[800];
 		struct result r;
 
@@ -435,7 +421,7 @@ broad_phase_bounded(void **state)
 	assert_non_null(strstr(r.err, "runaway energy"));
 	assert_true(kb < 60 * 1024 + RSS_SLACK_KB);
 
-	scene = write_scene("thrown.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n") GRID_CCD);
+	scene = dir_write_text("thrown.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n") GRID_CCD);
 	snprintf(args, sizeof args, "run --headless '%s'", scene);
 	kb = drape_rss(&r, args);
 	print_message("thrown at 300 m/s: exit %d, %ld kB\n", r.status, kb);
@@ -446,14 +432,14 @@ broad_phase_bounded(void **state)
 	assert_non_null(f = fopen(obj, "w"));
 	fputs("v -5 0.001 -5\nv 5 0.001 -5\nv 5 0.001 5\nv -5 0.001 5\nf 1 3 2\nf 1 4 3\n", f);
 	assert_int_equal(fclose(f), 0);
-	scene = write_scene("floor.scene", TABLECLOTH_AT("") "[mesh]\nfile = floor10.obj\n" GRID_CCD);
+	scene = dir_write_text("floor.scene", TABLECLOTH_AT("") "[mesh]\nfile = floor10.obj\n" GRID_CCD);
 	snprintf(args, sizeof args, "run --headless '%s'", scene);
 	kb = drape_rss(&r, args);
 	print_message("under a 10 m floor mesh: exit %d, %ld kB\n", r.status, kb);
 	assert_int_equal(r.status, 0);
 	assert_true(kb < 60 * 1024 + RSS_SLACK_KB);
 
-	scene = write_scene("limited.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n") GRID_CCD
+	scene = dir_write_text("limited.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n") GRID_CCD
 	    "memory = 2 MB\n");
 	snprintf(args, sizeof args, "run --headless '%s'", scene);
 	drape(&r, args);
@@ -481,7 +467,7 @@ out_of_memory_exits_1(void **state)
 #ifdef UNDER_ASAN
 	skip();
 #endif
-	scene = write_scene("thrown-big.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n")
+	scene = dir_write_text("thrown-big.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n")
 	    GRID_CCD);
 	snprintf(path, sizeof path, "%s/oom.err", dir);
 	snprintf(cmd, sizeof cmd, "ulimit -v 100000 && exec '%s' run --headless --set "
@@ -507,7 +493,7 @@ sighup_headless(void **state)
 	int code = -1;
 
 	(void)state;
-	scene = write_scene("thrown-long.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n")
+	scene = dir_write_text("thrown-long.scene", TABLECLOTH_AT("velocity = 300 300 300 m/s\n")
 	    GRID_CCD);
 	snprintf(cmd, sizeof cmd, "'%s' run --headless --until 10 --record '%s/hup.drr' "
 	    "--final-obj '%s/hup.obj' '%s' >/dev/null 2>'%s/hup.err' & pid=$!; sleep 1; "
@@ -621,7 +607,7 @@ signals_within_a_large_step(void **state)
 {
 	static const char *const methods[] = { "implicit-euler", "fast" };
 	char args[2000];
-	const char *path = write_scene("large.scene", "[simulation]\nduration = 10 s\n"
+	const char *path = dir_write_text("large.scene", "[simulation]\nduration = 10 s\n"
 	    "[cloth]\nnodes = 768 768\nspacing = 1 mm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 10 kPa\n"
 	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n");

@@ -31,35 +31,13 @@
 /* lines 1-2 [simulation], 3-12 [cloth], then what follows from line 13 */
 #define MESH(file) SIM CLOTH "[mesh]\nfile = " file "\n"
 
-static const char *
-write_file(const char *name, const void *data, size_t len)
-{
-	static char path[8][700];
-	static int k;
-	char *p = path[k++ % 8];
-	FILE *f;
-
-	snprintf(p, sizeof path[0], "%s/%s", dir, name);
-	f = fopen(p, "wb");
-	assert_non_null(f);
-	assert_int_equal(fwrite(data, 1, len, f), len);
-	assert_int_equal(fclose(f), 0);
-	return p;
-}
-
-static const char *
-write_text(const char *name, const char *text)
-{
-	return write_file(name, text, strlen(text));
-}
-
 /* "drape ARGS" where ARGS has one %s, the path of a file written from text. */
 static void
 drape_on(struct result *r, const char *fmt, const char *name, const char *text)
 {
 	char args[2000];
 
-	snprintf(args, sizeof args, fmt, write_text(name, text));
+	snprintf(args, sizeof args, fmt, dir_write_text(name, text));
 	drape(r, args);
 }
 
@@ -98,22 +76,22 @@ obj_that_never_ends(void **state)
 	memset(big, 'x', OBJ_MAX_LINE + 1);
 	memcpy(big, "v 0 0 0\n# ", 10);
 	big[OBJ_MAX_LINE + 9] = '\n';
-	write_file("long.obj", big, OBJ_MAX_LINE + 10);
+	dir_write("long.obj", big, OBJ_MAX_LINE + 10);
 	free(big);
 	drape_on(&r, "run --headless '%s'", "long.scene", MESH("long.obj"));
 	snprintf(where, sizeof where, "long.scene:14: file: %s/long.obj:2: ", dir);
 	expect(&r, 2, where, "expected a line of at most 65536 bytes");
 
-	write_file("ctl.obj", "o x\n\x01\x02\x03\n# v 1 2 3\n", 18);
+	dir_write("ctl.obj", "o x\n\x01\x02\x03\n# v 1 2 3\n", 18);
 	drape_on(&r, "run --headless '%s'", "ctl.scene", MESH("ctl.obj"));
 	expect(&r, 2, "ctl.obj: expected at least one face",
 	    "found none: it is not a text file (byte 0x01 on line 2)");
 
-	write_file("bin.obj", "\x7f" "ELF\x02\x01\x01\0\0\0", 10);
+	dir_write("bin.obj", "\x7f" "ELF\x02\x01\x01\0\0\0", 10);
 	drape_on(&r, "run --headless '%s'", "bin.scene", MESH("bin.obj"));
 	expect(&r, 2, "bin.obj:1: ", "found a NUL byte");
 
-	write_text("bom.obj", "\xef\xbb\xbf" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+	dir_write_text("bom.obj", "\xef\xbb\xbf" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
 	drape_on(&r, "run --headless '%s'", "bom.scene", MESH("bom.obj"));
 	expect(&r, 2, "bom.obj:1: ", "byte order mark (EF BB BF)");
 
@@ -260,7 +238,7 @@ snapshot_tells_replays_by_magic(void **state)
 	expect(&r, 2, "bom.scene:1: ", "found a UTF-8 byte order mark (EF BB BF) at the start: "
 	    "save the file as UTF-8 without BOM");
 	for (n = 0; n < 8; n++) {
-		write_file("short.drr", "DRAPERPL", (size_t)n);
+		dir_write("short.drr", "DRAPERPL", (size_t)n);
 		snprintf(args, sizeof args, "snapshot '%s/short.drr'", dir);
 		drape(&r, args);
 		snprintf(text, sizeof text, "short.drr: %d bytes: expected a scene or a replay", n);
@@ -432,7 +410,7 @@ kill_9_keeps_frames(void **state)
 	(void)state;
 	snprintf(path, sizeof path, "%s/killed.drr", dir);
 	snprintf(args, sizeof args, "'%s' run --headless --record '%s' '%s' >/dev/null 2>&1 & "
-	    "echo $! >'%s/pid'", DRAPE, path, write_text("slow-frames.scene",
+	    "echo $! >'%s/pid'", DRAPE, path, dir_write_text("slow-frames.scene",
 	    "[simulation]\nduration = 2 s\noutput_rate = 10\n[cloth]\nnodes = 25 25\n"
 	    "spacing = 10 mm\norigin = -0.12 0.15 -0.12 m\norientation = +x +z\n"
 	    "weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n"
@@ -484,7 +462,7 @@ export_exits_2(void **state)
 	assert_true(chunk_offsets(buf, len, REPLAY_FRAMES, off, 4) >= 2);
 
 	/* cut before the first frames chunk: no frame at all */
-	write_file("noframe.drr", buf, (size_t)off[0]);
+	dir_write("noframe.drr", buf, (size_t)off[0]);
 	snprintf(args, sizeof args, "export --obj '%s/x.obj' '%s/noframe.drr'", dir, dir);
 	drape(&r, args);
 	expect(&r, 2, "noframe.drr: ", "no intact frame to export");
@@ -497,7 +475,7 @@ export_exits_2(void **state)
 	    offsetof(struct replay_chunk_header, crc));
 	h.crc = (uint32_t)crc32(crc, buf + off[1] + sizeof h, h.comp_len);
 	memcpy(buf + off[1], &h, sizeof h);
-	write_file("noinflate.drr", buf, len);
+	dir_write("noinflate.drr", buf, len);
 	free(buf);
 	snprintf(args, sizeof args, "export --pc2 '%s/x.pc2' '%s/noinflate.drr'", dir, dir);
 	drape(&r, args);
@@ -517,7 +495,7 @@ nul_line_and_cut_header(void **state)
 	size_t len;
 
 	(void)state;
-	snprintf(args, sizeof args, "run --headless '%s'", write_file("nul.scene", text,
+	snprintf(args, sizeof args, "run --headless '%s'", dir_write("nul.scene", text,
 	    sizeof text - 1));
 	drape(&r, args);
 	expect(&r, 2, "nul.scene:8: ", "expected a text file, found a NUL byte");
@@ -530,7 +508,7 @@ nul_line_and_cut_header(void **state)
 	assert_int_equal(r.status, 0);
 	snprintf(args, sizeof args, "%s/h.drr", dir);
 	buf = read_whole(args, &len);
-	write_file("h64.drr", buf, 64);
+	dir_write("h64.drr", buf, 64);
 	free(buf);
 	snprintf(args, sizeof args, "info '%s/h64.drr'", dir);
 	drape(&r, args);
@@ -547,7 +525,7 @@ scale_refused_at_parse(void **state)
 	char text[2048];
 
 	(void)state;
-	write_text("tri.obj", tri_obj);
+	dir_write_text("tri.obj", tri_obj);
 	drape_on(&r, "run --headless '%s'", "scale.scene", MESH("tri.obj") "scale = 1e308\n");
 	expect(&r, 2, "scale.scene:15: ", "scale: the mesh reaches 1e+308 m from the origin "
 	    "along x (vertex 1); expected all of it within 1e+06 m");
@@ -599,7 +577,7 @@ setup_progress_on_a_terminal(void **state)
 	(void)state;
 	if (system("script -qec true /dev/null >/dev/null 2>&1") != 0)
 		skip();
-	scene = write_text("large.scene", "[simulation]\nduration = 1 ms\n[cloth]\n"
+	scene = dir_write_text("large.scene", "[simulation]\nduration = 1 ms\n[cloth]\n"
 	    "nodes = 512 512\nspacing = 1 mm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\nbending_warp = 0\n"
 	    "bending_weft = 0\n");

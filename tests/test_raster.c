@@ -201,20 +201,6 @@ presets_by_name(void **state)
 	"thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n" \
 	"bending_warp = 0\nbending_weft = 0\n[plane]\npoint = 0 0 0\n"
 
-static const char *
-write_file(const char *name, const char *text, size_t len)
-{
-	static char path[700];
-	FILE *f;
-
-	snprintf(path, sizeof path, "%s/%s", dir, name);
-	f = fopen(path, "wb");
-	assert_non_null(f);
-	assert_int_equal(fwrite(text, 1, len, f), len);
-	assert_int_equal(fclose(f), 0);
-	return path;
-}
-
 static int
 count_lines(const char *s, int *widest)
 {
@@ -237,7 +223,7 @@ snapshot_prints_the_grid(void **state)
 {
 	struct result r;
 	char args[900];
-	const char *scene = write_file("small.scene", SMALL, strlen(SMALL));
+	const char *scene = dir_write("small.scene", SMALL, strlen(SMALL));
 	int lines, widest;
 
 	(void)state;
@@ -268,7 +254,7 @@ snapshot_prints_the_grid(void **state)
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
 	assert_non_null(strstr(r.err, "ends at step 1000"));
-	snprintf(args, sizeof args, "snapshot '%s'", write_file("run.replay", "\x1f\x8b\x08\0", 4));
+	snprintf(args, sizeof args, "snapshot '%s'", dir_write("run.replay", "\x1f\x8b\x08\0", 4));
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
 	assert_non_null(strstr(r.err, "drape snapshot: "));	/* read as a replay, and refused */

@@ -943,13 +943,9 @@ cli_precision(void **state)
 	struct result r;
 	char args[3000], scene[700], out[700];
 	size_t i;
-	FILE *f;
 
 	(void)state;
-	path_in_dir(scene, sizeof scene, "tiny-cli.scene");
-	assert_non_null(f = fopen(scene, "w"));
-	assert_true(fputs(tiny_scene, f) >= 0);
-	assert_int_equal(fclose(f), 0);
+	snprintf(scene, sizeof scene, "%s", dir_write_text("tiny-cli.scene", tiny_scene));
 	path_in_dir(out, sizeof out, "tiny-cli-lossy.drr");
 	snprintf(args, sizeof args, "run --headless --precision 10um --record '%s' '%s'", out, scene);
 	drape(&r, args);

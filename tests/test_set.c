@@ -20,29 +20,15 @@
 #define COLLISION "[collision]\nself = on\nbroad = grid\n"
 #define BASE L1_16 PLANES MESH("a.obj") COLLISION	/* planes at lines 16 and 18 */
 
-static const char *
-write_file(const char *name, const char *text)
-{
-	static char path[700];
-	FILE *f;
-
-	snprintf(path, sizeof path, "%s/%s", dir, name);
-	f = fopen(path, "w");
-	assert_non_null(f);
-	assert_true(fputs(text, f) >= 0);
-	assert_int_equal(fclose(f), 0);
-	return path;
-}
-
 static int
 setup_files(void **state)
 {
 	if (setup(state) != 0)
 		return -1;
 	/* a.obj far below; b.obj a triangle right under the cloth */
-	write_file("a.obj", "v 1 -1 1\nv 2 -1 1\nv 1 -1 2\nf 1 2 3\n");
-	write_file("b.obj", "v -0.2 -0.0002 -0.2\nv 0.2 -0.0002 -0.2\nv 0 -0.0002 0.3\nf 1 3 2\n");
-	write_file("base.scene", BASE);
+	dir_write_text("a.obj", "v 1 -1 1\nv 2 -1 1\nv 1 -1 2\nf 1 2 3\n");
+	dir_write_text("b.obj", "v -0.2 -0.0002 -0.2\nv 0.2 -0.0002 -0.2\nv 0 -0.0002 0.3\nf 1 3 2\n");
+	dir_write_text("base.scene", BASE);
 	return 0;
 }
 
@@ -78,7 +64,7 @@ same_as_file(const char *set, const char *text, bool changed)
 
 	snprintf(args, sizeof args, "--set '%s' '%s/base.scene'", set, dir);
 	hash_of(args, a);
-	write_file("edited.scene", text);
+	dir_write_text("edited.scene", text);
 	snprintf(args, sizeof args, "'%s/edited.scene'", dir);
 	hash_of(args, b);
 	if (strcmp(a, b) != 0)
@@ -194,11 +180,11 @@ sections(void **state)
 	    false);
 	refused("run --headless", "box.min=0 0 0", "the scene has no [box] section");
 	/* a section the scene lacks, which it may have once: added */
-	write_file("plain.scene", plain);
+	dir_write_text("plain.scene", plain);
 	snprintf(args, sizeof args, "--set collision.self=on --set collision.broad=seed "
 	    "'%s/plain.scene'", dir);
 	hash_of(args, a);
-	write_file("plain2.scene", "[simulation]\nduration = 10 ms\n[cloth]\nnodes = 5 5\n"
+	dir_write_text("plain2.scene", "[simulation]\nduration = 10 ms\n[cloth]\nnodes = 5 5\n"
 	    "spacing = 10 mm\norigin = -0.02 0 -0.02\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n" PLANES
@@ -237,7 +223,7 @@ twice_and_file_lines(void **state)
 	assert_non_null(strstr(r.err, "--set cloth#1.spacing=8mm: cloth.spacing is already set "
 	    "by --set cloth.spacing=9mm"));
 	/* a line added before a bad line of the file: the file's line number */
-	p = write_file("bad.scene", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = -1\n");
+	p = dir_write_text("bad.scene", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = -1\n");
 	snprintf(args, sizeof args, "run --set 'cloth.damping=1 /s' '%s'", p);
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
@@ -257,7 +243,7 @@ check_and_snapshot(void **state)
 	refused("check", "nosuch.key=1", "unknown section [nosuch]");
 	/* a --set bad for the second scene only: refused before the first
 	 * is checked, nothing on stdout (not even the header) */
-	write_file("one-plane.scene", L1_16 "[plane]\npoint = 0 -0.1 0\n" COLLISION);
+	dir_write_text("one-plane.scene", L1_16 "[plane]\npoint = 0 -0.1 0\n" COLLISION);
 	snprintf(args, sizeof args, "check --set plane#2.friction=0.2 '%s/base.scene' "
 	    "'%s/one-plane.scene'", dir, dir);
 	drape(&r, args);
@@ -267,7 +253,7 @@ check_and_snapshot(void **state)
 	    strchr(r.err, '\n') != r.err + strlen(r.err) - 1)
 		fail_msg("stderr '%s'; expected one line, drape check: --set plane#2...", r.err);
 	/* a scene's own error still comes in its turn, after the header */
-	write_file("bad-own.scene", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = -1\n");
+	dir_write_text("bad-own.scene", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = -1\n");
 	snprintf(args, sizeof args, "check --set collision.broad=seed '%s/bad-own.scene'", dir);
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
@@ -279,7 +265,7 @@ check_and_snapshot(void **state)
 	assert_int_equal(r.status, 0);
 	assert_non_null(strstr(r.out, "\tscene\t"));
 	refused("snapshot", "collision.broad=fast", "broad: expected one of");
-	write_file("edited.scene", L1_16 PLANES MESH("b.obj") COLLISION);
+	dir_write_text("edited.scene", L1_16 PLANES MESH("b.obj") COLLISION);
 	snprintf(args, sizeof args, "snapshot --step 20 --size 40x12 --view side '%s/edited.scene'",
 	    dir);
 	drape(&r, args);

@@ -13,20 +13,6 @@
 #include "json.h"
 #include "stats.h"
 
-static const char *
-write_file(const char *name, const char *text)
-{
-	static char path[700];
-	FILE *f;
-
-	snprintf(path, sizeof path, "%s/%s", dir, name);
-	f = fopen(path, "w");
-	assert_non_null(f);
-	assert_true(fputs(text, f) >= 0);
-	assert_int_equal(fclose(f), 0);
-	return path;
-}
-
 static void
 parse_or_fail(const char *text, struct jval *v)
 {
@@ -323,12 +309,12 @@ json_equals_text(void **state)
 	char args[900];
 
 	(void)state;
-	snprintf(args, sizeof args, "'%s'", write_file("cusick.scene", CUSICK));
+	snprintf(args, sizeof args, "'%s'", dir_write_text("cusick.scene", CUSICK));
 	same_as_text("Cusick disc, seed hash, rk4", args);
 	snprintf(args, sizeof args, "--integrator implicit-euler '%s'",
-	    write_file("cusick.scene", CUSICK));
+	    dir_write_text("cusick.scene", CUSICK));
 	same_as_text("Cusick disc, implicit-euler", args);
-	snprintf(args, sizeof args, "--integrator fast '%s'", write_file("cusick.scene", CUSICK));
+	snprintf(args, sizeof args, "--integrator fast '%s'", dir_write_text("cusick.scene", CUSICK));
 	same_as_text("Cusick disc, fast", args);
 	same_as_text("tablecloth, grid, 15 ms", "--until 15ms " TOP_SRCDIR "/scenes/tablecloth.scene");
 	same_as_text("cantilever, dopri5, no collisions",
@@ -411,7 +397,7 @@ static void
 csv_equals_json(void **state)
 {
 	char args[900];
-	const char *scene = write_file("cusick.scene", CUSICK);
+	const char *scene = dir_write_text("cusick.scene", CUSICK);
 	struct result r;
 	struct jval rec;
 	const char *nl;
@@ -464,7 +450,7 @@ static void
 blowup_still_prints_its_record(void **state)
 {
 	char args[900];
-	const char *scene = write_file("stiff.scene", "[simulation]\nduration = 1\ndt = 5 ms\n"
+	const char *scene = dir_write_text("stiff.scene", "[simulation]\nduration = 1\ndt = 5 ms\n"
 	    "[cloth]\nnodes = 6 6\nspacing = 1 cm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 30 MPa\nmodulus_weft = 30 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 0\nbending_weft = 0\n[pin]\nnodes = 0 0\n");
@@ -504,7 +490,7 @@ static void
 resume_keeps_stdout_for_the_record(void **state)
 {
 	char args[1200], drr[700];
-	const char *scene = write_file("cusick.scene", CUSICK);
+	const char *scene = dir_write_text("cusick.scene", CUSICK);
 	struct result r;
 	struct jval rec;
 	char hash[17];

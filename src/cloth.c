@@ -421,12 +421,6 @@ cloth_omega_bound(const struct cloth *cl)
 }
 
 double
-cloth_omega_bound_soft(const struct cloth *cl)
-{
-	return omega_bound(cl, false, true);
-}
-
-double
 cloth_omega_bound_bend(const struct cloth *cl)
 {
 	return omega_bound(cl, false, false);

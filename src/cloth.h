@@ -77,9 +77,7 @@ void cloth_clamp_hinges(struct cloth *cl, const unsigned char *held);
 /* An upper bound on the network's highest angular frequency (rad/s), from
  * Gershgorin's theorem on the rest stiffness over the lightest masses. */
 double cloth_omega_bound(const struct cloth *cl);
-/* The same without the stretch springs: shear and bending alone. */
-double cloth_omega_bound_soft(const struct cloth *cl);
-/* And bending alone. */
+/* The same for bending alone. */
 double cloth_omega_bound_bend(const struct cloth *cl);
 
 /* The node at grid position (i, j), or -1 where the shape has none. */

@@ -207,7 +207,7 @@ add_bend(const struct forces *fo, const double *x, double *f, double fold)
 
 static void
 accel(const struct forces *fo, double t, const double *x, const double *v, double *a,
-    bool stretch, double fold)
+    bool stretch, bool shear, double fold)
 {
 	const struct cloth *cl = fo->cl;
 	vec3 g = v3_load(fo->g);
@@ -216,7 +216,7 @@ accel(const struct forces *fo, double t, const double *x, const double *v, doubl
 	memset(a, 0, (size_t)cl->n * 3 * sizeof *a);
 	if (stretch)
 		add_stretch(fo, x, v, a);
-	if (cl->ncorners > 0 && !forces_stopped(fo))
+	if (shear && cl->ncorners > 0 && !forces_stopped(fo))
 		add_shear(fo, x, a);
 	if (cl->nhinges > 0 && !forces_stopped(fo))
 		add_bend(fo, x, a, fold);
@@ -237,14 +237,14 @@ accel(const struct forces *fo, double t, const double *x, const double *v, doubl
 void
 forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a)
 {
-	accel(fo, t, x, v, a, true, 0);
+	accel(fo, t, x, v, a, true, true, 0);
 }
 
 void
-forces_accel_soft(const struct forces *fo, double t, const double *x, const double *v,
+forces_accel_bending(const struct forces *fo, double t, const double *x, const double *v,
     double *a, double fold)
 {
-	accel(fo, t, x, v, a, false, fold);
+	accel(fo, t, x, v, a, false, false, fold);
 }
 
 double

@@ -54,13 +54,14 @@ forces_poll(const struct forces *fo, size_t i)
 
 /* a = F/m for every node, from positions x and velocities v (3n each). */
 void forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a);
-/* The same without the stretch springs and their dashpots, and with the
- * fold limiter: a hinge's D (add_bend in forces.c: rest^2 (1 + cos theta)
+/* The same without the stretch springs and their dashpots and without
+ * the shear corners (the fast path solves both as constraints), and with
+ * the fold limiter: a hinge's D (add_bend in forces.c: rest^2 (1 + cos theta)
  * for a turning angle theta) is taken as at least fold * rest^2, so that
  * its stiffness, k at rest and growing as sec^4(theta/2) towards a fold
  * right back, stays within what an explicit substep integrates (0: none;
  * forces_fold_limit gives it). */
-void forces_accel_soft(const struct forces *fo, double t, const double *x, const double *v,
+void forces_accel_bending(const struct forces *fo, double t, const double *x, const double *v,
     double *a, double fold);
 /* The fold at which a hinge is s times as stiff as at rest (s >= 1). */
 double forces_fold_limit(double s);

@@ -12,7 +12,8 @@
  * substeps keep a node this far out, so that the step ends outside. */
 #define OBSTACLE_CLEARANCE 0.25
 
-/* The substep's h*omega_bound for the soft forces (see pbd_substep). */
+/* The substep's h*omega_bound for bending, the one stiffness taken
+ * explicitly (see pbd_substep). */
 #define SUBSTEP_OMEGA 1.8
 
 /* The springs of one family in lines: along the warp (i, j)-(i+1, j), or
@@ -74,11 +75,11 @@ free_lines(struct pbd_lines *ln)
 double
 pbd_substep(const struct forces *fo, double dt)
 {
-	double omega = cloth_omega_bound_soft(fo->cl), damp = fo->damping;
+	double omega = cloth_omega_bound_bend(fo->cl), damp = fo->damping;
 	/* symplectic Euler is stable for h*omega < 2 and a rate h*c < 2; the
 	 * Gershgorin bound is above the highest frequency at rest by a factor
-	 * of about 1.5 to 3, which leaves room for the stiffening of sheared
-	 * and bent elements (3/omega held on the tablecloth, 4/omega did not) */
+	 * of about 1.5 to 3, and the fold limiter keeps a bent hinge within it
+	 * (pbd_step) */
 	double h = dt;
 
 	if (omega > 0 && SUBSTEP_OMEGA / omega < h)
@@ -111,7 +112,8 @@ pbd_init(struct pbd *pb, const struct scene *sc, const struct forces *fo,
 	    (pb->diag = malloc(ns * sizeof *pb->diag)) == NULL ||
 	    (pb->off = malloc(ns * sizeof *pb->off)) == NULL ||
 	    (pb->rhs = malloc(ns * sizeof *pb->rhs)) == NULL ||
-	    (pb->dir = malloc(3 * ns * sizeof *pb->dir)) == NULL) {
+	    (pb->dir = malloc(3 * ns * sizeof *pb->dir)) == NULL ||
+	    (pb->row = malloc(((size_t)cl->n + 1) * sizeof *pb->row)) == NULL) {
 		pbd_free(pb);
 		return -1;
 	}
@@ -134,6 +136,7 @@ pbd_free(struct pbd *pb)
 	free(pb->off);
 	free(pb->rhs);
 	free(pb->dir);
+	free(pb->row);
 	memset(pb, 0, sizeof *pb);
 }
 
@@ -203,6 +206,60 @@ solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
 	}
 }
 
+/*
+ * Shear as compliant constraints, one Gauss-Seidel sweep over the corners
+ * a substep (XPBD, Macklin et al. 2016): a corner's energy k c^2/2, c the
+ * cosine of its angle (forces.c add_shear), is the constraint C = c with
+ * compliance 1/k, so that (lambda starting at 0) dl = -c / (sum w |grad c|^2
+ * + 1/(k h^2)) and x += w grad(c) dl. Taken explicitly, shear set the
+ * substep: its frequency is 8.6 times bending's on the shipped tablecloth
+ * (1975 against 231 rad/s, Gershgorin), so 11 substeps a 10 ms step where
+ * bending alone needs 2. At a substep of milliseconds k h^2 |grad c|^2 / m
+ * is of order one to ten on cotton jersey (the shear is soft beside the
+ * stretch), where one sweep a substep resolves it well, and the statics
+ * are the energy's: at rest every corner's sweep leaves it where its
+ * compliance balances the other forces.
+ */
+static void
+solve_shear(struct pbd *pb, double h, double *x)
+{
+	const struct cloth *cl = pb->fo->cl;
+	size_t s;
+
+	for (s = 0; s < cl->ncorners; s++) {
+		const struct corner *co = &cl->corners[s];
+		double wa = pb->w[co->a], wb = pb->w[co->b], wc = pb->w[co->c];
+		vec3 xc, e1, e2, ga, gb, gc;
+		double l1s, l2s, q, inv12, c, den, dl;
+
+		if (forces_poll(pb->fo, s))
+			return;		/* the step is dropped (pbd_step) */
+		if (wa + wb + wc == 0 || !(co->k > 0))
+			continue;
+		xc = v3_load(x + 3 * co->c);
+		e1 = v3_sub(v3_load(x + 3 * co->a), xc);
+		e2 = v3_sub(v3_load(x + 3 * co->b), xc);
+		l1s = v3_dot(e1, e1);
+		l2s = v3_dot(e2, e2);
+		if (l1s == 0 || l2s == 0)
+			continue;
+		q = 1 / (l1s * l2s);
+		inv12 = sqrt(q);		/* 1/(|e1||e2|) */
+		c = v3_dot(e1, e2) * inv12;
+		/* grad_a c = e2/(|e1||e2|) - c e1/|e1|^2, grad_b alike, grad_c
+		 * their negated sum */
+		ga = v3_madd(v3_scale(e2, inv12), e1, -c * l2s * q);
+		gb = v3_madd(v3_scale(e1, inv12), e2, -c * l1s * q);
+		gc = v3_neg(v3_add(ga, gb));
+		den = wa * v3_dot(ga, ga) + wb * v3_dot(gb, gb) + wc * v3_dot(gc, gc) +
+		    1 / (co->k * h * h);
+		dl = -c / den;
+		v3_store(x + 3 * co->a, v3_madd(v3_load(x + 3 * co->a), ga, wa * dl));
+		v3_store(x + 3 * co->b, v3_madd(v3_load(x + 3 * co->b), gb, wb * dl));
+		v3_store(x + 3 * co->c, v3_madd(xc, gc, wc * dl));
+	}
+}
+
 /* Nodes inside an analytic obstacle (or nearer than the clearance) back
  * on it, their motion along it held by Coulomb friction: static while the
  * tangential motion of the substep is under mu times the push out, else
@@ -242,21 +299,62 @@ obstacles(struct pbd *pb, double *x)
 	}
 }
 
+/*
+ * The substep a state allows, beside bending's: the line solves move each
+ * node along its springs' present directions, so a taut yarn's sideways
+ * motion (its stiffness T/l per spring, the geometric stiffness of the
+ * tension T) is taken explicitly. Its bound is Gershgorin's, 2 T/l a
+ * spring at each end, over the node's mass; a hanging catenary at a 10 ms
+ * substep tore, and the tablecloth's impacts crumpled it, where this
+ * bound holds them. Without it the substep was shear's, which is solved
+ * as a constraint now (solve_shear).
+ */
+static double
+tension_omega2(const struct pbd *pb, const double *x)
+{
+	const struct cloth *cl = pb->fo->cl;
+	double w2 = 0;
+	size_t s;
+	int p;
+
+	for (p = 0; p < cl->n; p++)
+		pb->row[p] = 0;
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		double len = v3_len(v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a)));
+		double tension = sp->k * (len - sp->rest);
+
+		if (tension > 0 && len > 0) {
+			pb->row[sp->a] += 2 * tension / len;
+			pb->row[sp->b] += 2 * tension / len;
+		}
+	}
+	for (p = 0; p < cl->n; p++)
+		if (pb->row[p] * pb->w[p] > w2)
+			w2 = pb->row[p] * pb->w[p];
+	return w2;
+}
+
 void
 pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, struct contacts *ct,
     const struct collide *col)
 {
 	const struct cloth *cl = pb->fo->cl;
 	size_t n3 = 3 * (size_t)cl->n, i;
-	int nsub = (int)ceil(h / pb->substep * (1 - 1e-12)), s;
-	double hs, fold = 0;
+	double hs, fold = 0, w2 = tension_omega2(pb, y), sub = pb->substep;
+	int nsub, s;
 
+	/* the two bounds' rows add: omega^2 at most the sum of theirs */
+	if (w2 > 0)
+		sub = fmin(sub, SUBSTEP_OMEGA / sqrt(w2 + pb->omega_bend * pb->omega_bend));
+	nsub = (int)ceil(h / sub * (1 - 1e-12));
 	if (nsub < 1)
 		nsub = 1;
 	hs = h / nsub;
 	/* the fold limiter: a hinge at most as stiff as the substep's bound
-	 * hs omega < SUBSTEP_OMEGA allows bending alone (the soft forces'
-	 * sum is within it at rest by Gershgorin's margin, pbd_substep) */
+	 * hs omega < SUBSTEP_OMEGA allows, and at least twice its stiffness at
+	 * rest (Gershgorin's bound is above the true frequency by 1.5 to 3,
+	 * pbd_substep) */
 	if (pb->omega_bend > 0) {
 		double share = pow(SUBSTEP_OMEGA / (hs * pb->omega_bend), 2);
 
@@ -267,7 +365,7 @@ pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, str
 	for (s = 0; s < nsub && !forces_stopped(pb->fo); s++) {
 		double ts = t + s * hs, te = s + 1 == nsub ? t + h : t + (s + 1) * hs;
 
-		forces_accel_soft(pb->fo, ts, pb->xs, pb->vs, pb->a, fold);
+		forces_accel_bending(pb->fo, ts, pb->xs, pb->vs, pb->a, fold);
 		memcpy(pb->xprev, pb->xs, n3 * sizeof *pb->xs);
 		for (i = 0; i < n3; i++) {
 			if (pb->w[i / 3] == 0)
@@ -276,6 +374,7 @@ pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, str
 			pb->xs[i] += hs * pb->vs[i];
 		}
 		prescribed_apply(pb->pr, cl, te, pb->xs, NULL);
+		solve_shear(pb, hs, pb->xs);
 		solve_family(pb, &pb->line[0], hs, pb->xs);
 		solve_family(pb, &pb->line[1], hs, pb->xs);
 		if (ct != NULL)

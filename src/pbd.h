@@ -8,9 +8,11 @@
  * hundred at 10 ms with block Jacobi, 15-40 preconditioned along lines):
  * the stiff springs couple the whole network, the soft forces do not.
  * So the two are split, after Macklin et al. 2019 ("small steps"):
- *   - the step is cut into substeps short enough for the soft forces
- *     (shear, bending, gravity, loads, damping) to be taken explicitly,
- *     v += h_s F_soft/m, x* = x + h_s v;
+ *   - the step is cut into substeps short enough for bending, the one
+ *     stiffness taken explicitly, with gravity, loads and damping,
+ *     v += h_s F/m, x* = x + h_s v, and for the sideways swing of taut
+ *     yarns (their tension's geometric stiffness, which the line solves
+ *     below follow only from substep to substep): pbd.c tension_omega2;
  *   - the stretch springs are compliant constraints (XPBD, Macklin et al.
  *     2016: C = |x_b - x_a| - l, compliance 1/k, which is backward Euler
  *     of the spring energy), and instead of Gauss-Seidel over springs,
@@ -21,21 +23,17 @@
  *     lines the springs meet at right angles at rest and the coupling is
  *     the shear angle's cosine, left to the alternation of the two
  *     families (one each a substep);
+ *   - the shear corners are compliant constraints too, one Gauss-Seidel
+ *     sweep a substep (C = cos of the corner's angle, compliance 1/k):
+ *     taken explicitly they set the substep, 8.6 times shorter than
+ *     bending's on the shipped tablecloth;
  *   - held nodes follow their prescribed motion; nodes inside an analytic
  *     obstacle go back to its surface, with Coulomb friction;
  *   - v = (x - x_prev)/h_s.
- * A hinge's bending stiffness grows without bound as it folds right back
- * (forces.c: as sec^4 of half its turning angle), which no explicit
- * substep sized at rest can follow: a soft fabric (0.1 uN*m) piling on
- * the floor blew up at 0.26 s. So the substep limits it (forces.h's fold
- * limiter): a hinge is taken at most as stiff as the substep's stability
- * bound allows bending alone, which bends the moment-angle curve flat past
- * that fold (129 degrees on the shipped tablecloth, 157 with a bending of
- * 0.1 uN*m) and leaves smaller angles exact.
- * Statics are the model's: at rest the explicit forces are the soft
- * energies' gradients and the line solves give each spring the tension
- * whose elastic strain its compliance says. The substep is set by the
- * soft forces' highest frequency, not the springs'. The step's contacts
+ * Statics are the model's: at rest the explicit forces are the bending
+ * energy's gradient and the constraint solves give each spring and corner
+ * the force its compliance says. The substep is set by bending's highest
+ * frequency and the yarns' tension, not by the springs' stiffness. The step's contacts
  * between parts of the cloth and with meshes are the collision stages'
  * (collide.h), after the step, from its start and end states. */
 #ifndef DRAPE_PBD_H
@@ -63,6 +61,7 @@ struct pbd {
 	double *w;		/* per node: 1/m, 0 when held */
 	double *a, *xprev, *xs, *vs;	/* 3n scratch */
 	double *diag, *off, *rhs, *dir;	/* per spring: the line system */
+	double *row;		/* per node: the tension's stiffness (pbd.c) */
 	long substeps;		/* so far */
 };
 
@@ -72,8 +71,9 @@ int pbd_init(struct pbd *pb, const struct scene *sc, const struct forces *fo,
     const struct prescribed *pr, double dt);
 void pbd_free(struct pbd *pb);
 
-/* The substep for a scene: half the explicit limit of its soft forces'
- * highest frequency, at most dt. */
+/* The longest substep for a scene: about half the explicit limit of its
+ * bending's highest frequency, at most dt (a step may take shorter ones
+ * for its yarns' tension). */
 double pbd_substep(const struct forces *fo, double dt);
 
 /* y (positions, velocities at t) to y_out at t + h; ct: the step's

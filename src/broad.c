@@ -40,7 +40,9 @@ broad_free(struct broad *b)
 	free(b->node);
 	free(b->rep_vertex);
 	free(b->rep_edge);
-	free(b->tri_edge);
+	free(b->rep_start);
+	free(b->rep_list);
+	free(b->rep_nv);
 	free(b->stack);
 	free(b->qbox);
 	free(b->ebox);
@@ -784,19 +786,25 @@ bvh_prepare(struct broad *b, const struct geom *g)
 	free(b->node);
 	free(b->rep_vertex);
 	free(b->rep_edge);
-	free(b->tri_edge);
+	free(b->rep_start);
+	free(b->rep_list);
+	free(b->rep_nv);
 	b->node = NULL;
-	b->rep_vertex = b->rep_edge = b->tri_edge = NULL;
+	b->rep_vertex = b->rep_edge = b->rep_start = b->rep_list = NULL;
+	b->rep_nv = NULL;
 	if (g->ntri == 0 || g->ntri > (size_t)INT_MAX / 2)
 		return g->ntri == 0 ? 0 : -1;
 	b->node = malloc((2 * g->ntri) * sizeof *b->node);
 	b->rep_vertex = malloc(((size_t)g->nv + 1) * sizeof *b->rep_vertex);
 	b->rep_edge = malloc((g->nedges + 1) * sizeof *b->rep_edge);
-	b->tri_edge = malloc(3 * g->ntri * sizeof *b->tri_edge);
+	b->rep_start = calloc(g->ntri + 1, sizeof *b->rep_start);
+	b->rep_list = malloc(((size_t)g->nv + g->nedges + 1) * sizeof *b->rep_list);
+	b->rep_nv = calloc(g->ntri, sizeof *b->rep_nv);
 	tri = malloc(g->ntri * sizeof *tri);
 	key = malloc(g->ntri * sizeof *key);
 	if (b->node == NULL || b->rep_vertex == NULL || b->rep_edge == NULL ||
-	    b->tri_edge == NULL || tri == NULL || key == NULL)
+	    b->rep_start == NULL || b->rep_list == NULL ||
+	    b->rep_nv == NULL || tri == NULL || key == NULL)
 		goto fail;
 	for (t = 0; t < g->ntri; t++) {
 		tri[t] = (int)t;
@@ -811,26 +819,31 @@ bvh_prepare(struct broad *b, const struct geom *g)
 	for (v = 0; v < g->nv; v++)
 		b->rep_vertex[v] = g->vtri_start[v] < g->vtri_start[v + 1] ?
 		    g->vtri[g->vtri_start[v]] : -1;
-	for (t = 0; t < 3 * g->ntri; t++)
-		b->tri_edge[t] = -1;
 	for (e = 0; e < (int)g->nedges; e++) {
-		int a = g->edge[2 * e], c = g->edge[2 * e + 1], k, j;
+		int a = g->edge[2 * e], c = g->edge[2 * e + 1], k;
 
 		b->rep_edge[e] = -1;
-		for (k = g->vtri_start[a]; k < g->vtri_start[a + 1]; k++) {
-			int tt = g->vtri[k];
-
-			if (!tri_has(g, tt, c))
-				continue;
-			if (b->rep_edge[e] < 0)
-				b->rep_edge[e] = tt;
-			for (j = 0; j < 3; j++)	/* its place in the triangle */
-				if (b->tri_edge[3 * tt + j] < 0) {
-					b->tri_edge[3 * tt + j] = e;
-					break;
-				}
-		}
+		for (k = g->vtri_start[a]; k < g->vtri_start[a + 1] && b->rep_edge[e] < 0; k++)
+			if (tri_has(g, g->vtri[k], c))
+				b->rep_edge[e] = g->vtri[k];
 	}
+	/* the lists each leaf stands for: counts, starts, then the entries
+	 * (vertices first, in order, then edges) */
+	for (v = 0; v < g->nv; v++)
+		if (b->rep_vertex[v] >= 0)
+			b->rep_start[b->rep_vertex[v] + 1]++, b->rep_nv[b->rep_vertex[v]]++;
+	for (e = 0; e < (int)g->nedges; e++)
+		if (b->rep_edge[e] >= 0)
+			b->rep_start[b->rep_edge[e] + 1]++;
+	for (t = 0; t < g->ntri; t++)
+		b->rep_start[t + 1] += b->rep_start[t];
+	memcpy(tri, b->rep_start, g->ntri * sizeof *tri);	/* the next free entry */
+	for (v = 0; v < g->nv; v++)
+		if (b->rep_vertex[v] >= 0)
+			b->rep_list[tri[b->rep_vertex[v]]++] = v;
+	for (e = 0; e < (int)g->nedges; e++)
+		if (b->rep_edge[e] >= 0)
+			b->rep_list[tri[b->rep_edge[e]]++] = e;
 	b->bvh_nv = g->nv;
 	b->bvh_ntri = g->ntri;
 	free(tri);
@@ -852,37 +865,45 @@ leaf(const struct bvh_node *n)
 
 /* The pairs a pair of leaves (triangles ta and tb, their boxes ba and bb)
  * holds: the vertices each stands for against the other triangle, and the
- * edges each stands for against the other's. */
+ * edges each stands for against the other's. A cloth's leaves meet their
+ * neighbours' at every step, so this runs some ten thousand times a
+ * traversal: the lists of what each stands for (bvh_prepare) keep it to
+ * the one vertex and one or two edges a triangle of a grid has. */
 static int
 bvh_leaves(struct broad *b, const struct geom *g, const struct broad_want *want, int ta,
     const double *ba, int tb, const double *bb)
 {
+	const int *la = b->rep_list + b->rep_start[ta], *lb = b->rep_list + b->rep_start[tb];
+	int nva = b->rep_nv[ta], nvb = b->rep_nv[tb];
+	int nea = b->rep_start[ta + 1] - b->rep_start[ta] - nva;
+	int neb = b->rep_start[tb + 1] - b->rep_start[tb] - nvb;
 	int k, l, pass;
 
 	for (pass = 0; pass < 2; pass++) {
-		int t = pass ? tb : ta, o = pass ? ta : tb;
+		const int *lv = pass ? lb : la;
+		int o = pass ? ta : tb, nvv = pass ? nvb : nva;
 		const double *ob = pass ? ba : bb;
 
-		for (k = 0; k < 3; k++) {
-			int v = g->tri[3 * t + k];
+		for (k = 0; k < nvv; k++) {
+			int v = lv[k];
 
-			if (b->rep_vertex[v] != t || (v >= g->ncloth && !want->mesh_vertices) ||
-			    tri_has(g, o, v) || vt_static(g, v, o) || !box_overlap(b->qbox + 6 * v, ob))
+			if ((v >= g->ncloth && !want->mesh_vertices) || tri_has(g, o, v) ||
+			    vt_static(g, v, o) || !box_overlap(b->qbox + 6 * v, ob))
 				continue;
 			if (push_vt(b, v, o) != 0)
 				return -1;
 		}
 	}
-	for (k = 0; want->edges && k < 3; k++) {
-		int ea = b->tri_edge[3 * ta + k];
+	if (!want->edges)
+		return 0;
+	for (k = 0; k < nea; k++) {
+		int ea = la[nva + k];
+		const double *eba = b->ebox + 6 * ea;
 
-		if (ea < 0 || b->rep_edge[ea] != ta)
-			continue;
-		for (l = 0; l < 3; l++) {
-			int eb = b->tri_edge[3 * tb + l];
+		for (l = 0; l < neb; l++) {
+			int eb = lb[nvb + l];
 
-			if (eb < 0 || b->rep_edge[eb] != tb || ee_skip(g, ea, eb) ||
-			    !box_overlap(b->ebox + 6 * ea, b->ebox + 6 * eb))
+			if (!box_overlap(eba, b->ebox + 6 * eb) || ee_skip(g, ea, eb))
 				continue;
 			if (push_ee(b, ea, eb) != 0)
 				return -1;
@@ -891,31 +912,31 @@ bvh_leaves(struct broad *b, const struct geom *g, const struct broad_want *want,
 	return 0;
 }
 
-static int
-push_node_pair(struct broad *b, size_t *top, int x, int y)
-{
-	if (grow((void **)&b->stack, &b->stackcap, *top + 2, sizeof *b->stack) != 0)
-		return -1;
-	b->stack[(*top)++] = x;
-	b->stack[(*top)++] = y;
-	return 0;
-}
-
 /* Every pair of leaves, one under x and one under y (x == y: a subtree
- * against itself, each pair of distinct leaves once), whose boxes overlap. */
+ * against itself, each pair of distinct leaves once), whose boxes overlap.
+ * The stack of node pairs grows before each pop's at most three pushes. */
 static int
 bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *want, int x, int y)
 {
 	size_t top = 0;
 	long visits = 0;
+	int *st;
 
-	if (push_node_pair(b, &top, x, y) != 0)
+	if (grow((void **)&b->stack, &b->stackcap, 8, sizeof *b->stack) != 0)
 		return -1;
+	st = b->stack;
+	st[top++] = x;
+	st[top++] = y;
 	while (top > 0) {
 		const struct bvh_node *p, *q;
 
-		y = b->stack[--top];
-		x = b->stack[--top];
+		if (top + 6 > b->stackcap) {
+			if (grow((void **)&b->stack, &b->stackcap, top + 6, sizeof *b->stack) != 0)
+				return -1;
+			st = b->stack;
+		}
+		y = st[--top];
+		x = st[--top];
 		p = &b->node[x];
 		q = &b->node[y];
 		if ((++visits & 4095) == 0 && stop_asked(b))
@@ -934,10 +955,12 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 		if (x == y) {
 			if (leaf(p))
 				continue;	/* one triangle: nothing */
-			if (push_node_pair(b, &top, p->left, p->left) != 0 ||
-			    push_node_pair(b, &top, p->right, p->right) != 0 ||
-			    push_node_pair(b, &top, p->left, p->right) != 0)
-				return -1;
+			st[top++] = p->left;
+			st[top++] = p->left;
+			st[top++] = p->right;
+			st[top++] = p->right;
+			st[top++] = p->left;
+			st[top++] = p->right;
 			continue;
 		}
 		if (!box_overlap(p->box, q->box))
@@ -948,24 +971,31 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 		} else if (leaf(q) || (!leaf(p) && p->box[3] - p->box[0] + p->box[4] - p->box[1] +
 		    p->box[5] - p->box[2] >= q->box[3] - q->box[0] + q->box[4] - q->box[1] +
 		    q->box[5] - q->box[2])) {
-			if (push_node_pair(b, &top, p->left, y) != 0 ||
-			    push_node_pair(b, &top, p->right, y) != 0)
-				return -1;
-		} else if (push_node_pair(b, &top, x, q->left) != 0 ||
-		    push_node_pair(b, &top, x, q->right) != 0) {
-			return -1;
+			st[top++] = p->left;
+			st[top++] = y;
+			st[top++] = p->right;
+			st[top++] = y;
+		} else {
+			st[top++] = x;
+			st[top++] = q->left;
+			st[top++] = x;
+			st[top++] = q->right;
 		}
 	}
 	return 0;
 }
 
-/* Pairs sorted by vertex (edge a) with each run sorted: a counting sort by
- * the first element, then sort_runs. */
+/* Pairs sorted by vertex (edge a), then by triangle (edge b): two counting
+ * sorts, by the second element and then, stably, by the first (a radix
+ * sort on the two keys). A run of one vertex's pairs is dozens long at a
+ * fast step, where insertion sort is quadratic and qsort allocates; this
+ * is linear in the pairs and the keys. */
 static int
 bvh_sort(struct broad *b, const struct geom *g)
 {
-	size_t n = b->nvt > b->nee ? b->nvt : b->nee, i, keys = (size_t)g->nv + g->nedges + 1;
-	size_t *count = calloc(keys + 1, sizeof *count);
+	size_t n = b->nvt > b->nee ? b->nvt : b->nee, i;
+	size_t keys = (size_t)g->nv > g->nedges ? (size_t)g->nv : g->nedges;
+	size_t *count = malloc(((keys > g->ntri ? keys : g->ntri) + 1) * sizeof *count);
 	void *tmp = malloc((n ? n : 1) * sizeof(struct vt_pair));
 	struct vt_pair *tv = tmp;
 	struct ee_pair *te = tmp;
@@ -976,26 +1006,23 @@ bvh_sort(struct broad *b, const struct geom *g)
 		free(tmp);
 		return -1;
 	}
-	for (i = 0; i < b->nvt; i++)
-		count[b->vt[i].v + 1]++;
-	for (i = 1; i <= (size_t)g->nv; i++)
-		count[i] += count[i - 1];
-	for (i = 0; i < b->nvt; i++)
-		tv[count[b->vt[i].v]++] = b->vt[i];
-	if (b->nvt > 0)		/* memcpy may not take a null array, even for 0 bytes */
-		memcpy(b->vt, tv, b->nvt * sizeof *tv);
-	memset(count, 0, (keys + 1) * sizeof *count);
-	for (i = 0; i < b->nee; i++)
-		count[b->ee[i].a + 1]++;
-	for (i = 1; i <= g->nedges; i++)
-		count[i] += count[i - 1];
-	for (i = 0; i < b->nee; i++)
-		te[count[b->ee[i].a]++] = b->ee[i];
-	if (b->nee > 0)
-		memcpy(b->ee, te, b->nee * sizeof *te);
+#define COUNTING_PASS(src, dst, n, field, nkeys) do {				\
+		memset(count, 0, ((nkeys) + 1) * sizeof *count);		\
+		for (i = 0; i < (n); i++)					\
+			count[(size_t)(src)[i].field + 1]++;			\
+		for (i = 1; i <= (nkeys); i++)					\
+			count[i] += count[i - 1];				\
+		for (i = 0; i < (n); i++)					\
+			(dst)[count[(src)[i].field]++] = (src)[i];		\
+	} while (0)
+	COUNTING_PASS(b->vt, tv, b->nvt, t, g->ntri);
+	COUNTING_PASS(tv, b->vt, b->nvt, v, (size_t)g->nv);
+	COUNTING_PASS(b->ee, te, b->nee, b, g->nedges);
+	COUNTING_PASS(te, b->ee, b->nee, a, g->nedges);
+#undef COUNTING_PASS
 	free(count);
 	free(tmp);
-	return sort_runs(b);
+	return 0;
 }
 
 static int

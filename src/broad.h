@@ -107,7 +107,11 @@ struct broad {
 	struct bvh_node *node;
 	int nnodes, cloth_root, mesh_root;
 	int *rep_vertex, *rep_edge;	/* the triangle standing for each */
-	int *tri_edge;		/* per triangle: its 3 edges */
+	/* per triangle t, the vertices and edges it stands for:
+	 * rep_list[rep_start[t] .. rep_start[t] + rep_nv[t]) vertices, then
+	 * edges up to rep_start[t + 1] */
+	int *rep_start, *rep_list;
+	unsigned char *rep_nv;
 	double *ebox;		/* per edge: its box */
 	size_t eboxcap;
 	int *stack;

@@ -96,16 +96,21 @@ closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, double w[3])
 	w[0] = 1 - w[1] - w[2];
 }
 
-/* The pair's weights on its four vertices at positions x: the separation
- * is sum w[k] x[k], from the second side to the first. */
+/* The pair's four vertices at positions x. */
 static void
-weights(const struct contact_pair *cp, const struct collide *col, const double *x, double w[4])
+points(const struct contact_pair *cp, const struct collide *col, const double *x, vec3 p[4])
 {
-	vec3 p[4];
 	int k;
 
 	for (k = 0; k < 4; k++)
 		p[k] = at(col, x, cp->vert[k]);
+}
+
+/* The pair's weights on its four vertices at points p: the separation is
+ * sum w[k] p[k], from the second side to the first. */
+static void
+weights(const struct contact_pair *cp, const vec3 p[4], double w[4])
+{
 	if (cp->other >= 0) {	/* a vertex and a triangle */
 		double b[3];
 
@@ -126,14 +131,13 @@ weights(const struct contact_pair *cp, const struct collide *col, const double *
 }
 
 static vec3
-separation(const struct contact_pair *cp, const struct collide *col, const double *x,
-    const double w[4])
+separation(const vec3 p[4], const double w[4])
 {
 	vec3 d = v3(0, 0, 0);
 	int k;
 
 	for (k = 0; k < 4; k++)
-		d = v3_madd(d, at(col, x, cp->vert[k]), w[k]);
+		d = v3_madd(d, p[k], w[k]);
 	return d;
 }
 
@@ -173,9 +177,9 @@ boxes_overlap(const struct collide *col, const struct contact_pair *cp)
 			if (k == 0 || k == first) {
 				lo[side][a] = b[a];
 				hi[side][a] = b[3 + a];
-			} else {
-				lo[side][a] = fmin(lo[side][a], b[a]);
-				hi[side][a] = fmax(hi[side][a], b[3 + a]);
+			} else {	/* not fmin and fmax: library calls */
+				lo[side][a] = b[a] < lo[side][a] ? b[a] : lo[side][a];
+				hi[side][a] = b[3 + a] > hi[side][a] ? b[3 + a] : hi[side][a];
 			}
 		}
 	}
@@ -195,26 +199,30 @@ consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp
 {
 	size_t n3 = 3 * (size_t)col->ncloth;
 	double w[4], dist, rel = 0;
-	vec3 d, disp[4];
-	int k, l;
+	vec3 d, p[4], disp[4];
+	int k, l, first = cp->other >= 0 ? 1 : 2;
 
 	if (!boxes_overlap(col, cp))
 		return 0;
-	weights(cp, col, y0, w);
-	d = separation(cp, col, y0, w);
+	points(cp, col, y0, p);
+	weights(cp, p, w);
+	d = separation(p, w);
 	dist = v3_len(d);
 	for (k = 0; k < 4; k++)
 		disp[k] = cp->vert[k] < col->ncloth ?
 		    v3_scale(v3_load(y0 + n3 + 3 * cp->vert[k]), h) : v3(0, 0, 0);
 	/* first side's vertices against the second's: the vertex against the
 	 * triangle's three, or edge against edge */
-	for (k = 0; k < (cp->other >= 0 ? 1 : 2); k++)
-		for (l = cp->other >= 0 ? 1 : 2; l < 4; l++)
-			rel = fmax(rel, v3_len(v3_sub(disp[k], disp[l])));
+	for (k = 0; k < first; k++)
+		for (l = first; l < 4; l++) {
+			double r = v3_len(v3_sub(disp[k], disp[l]));
+
+			rel = r > rel ? r : rel;
+		}
 	if (dist - 1.5 * rel >= 1.25 * ct->thickness)
 		return 0;
 	memcpy(cp->w, w, sizeof cp->w);
-	if (dist > 1e-12 * (1 + v3_len(at(col, y0, cp->vert[0])))) {
+	if (dist > 1e-12 * (1 + v3_len(p[0]))) {
 		v3_store(cp->n0, v3_scale(d, 1 / dist));
 	} else {
 		/* touching already: against the relative motion */
@@ -367,20 +375,21 @@ contacts_events(struct contacts *ct, struct collide *col, long step, const doubl
 	for (i = 0; i < ct->n; i++) {
 		const struct contact_pair *cp = &ct->pair[i];
 		double w[4];
-		vec3 d, n, q = v3(0, 0, 0), rv = v3(0, 0, 0);
+		vec3 d, n, q = v3(0, 0, 0), rv = v3(0, 0, 0), p[4];
 		bool tri = cp->other >= 0;
 		int k;
 
 		if (!cp->active)
 			continue;
-		weights(cp, col, y1, w);
-		d = separation(cp, col, y1, w);
+		points(cp, col, y1, p);
+		weights(cp, p, w);
+		d = separation(p, w);
 		n = v3_len(d) > 0 ? v3_scale(d, 1 / v3_len(d)) : v3_load(cp->n0);
 		for (k = 0; k < 4; k++) {
 			int v = cp->vert[k];
 
 			if (w[k] < 0)
-				q = v3_madd(q, at(col, y1, v), -w[k]);
+				q = v3_madd(q, p[k], -w[k]);
 			if (v < col->ncloth)
 				rv = v3_madd(rv, v3_load(y1 + n3 + 3 * v), w[k]);
 		}

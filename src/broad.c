@@ -46,6 +46,8 @@ broad_free(struct broad *b)
 	free(b->stack);
 	free(b->qbox);
 	free(b->ebox);
+	free(b->vnear);
+	free(b->enear);
 	memset(b, 0, sizeof *b);
 }
 
@@ -260,6 +262,56 @@ box_overlap(const double *a, const double *b)
 {
 	return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] &&
 	    a[2] <= b[5] && b[2] <= a[5];
+}
+
+/*
+ * Whether two sets of points, in boxes of positions pa and pb at the step's
+ * start (lo then hi, 6 each), moving by motions in boxes ma and mb, may lie
+ * within near plus share times their relative motion (a broad_want's
+ * near): the largest gap between the position boxes along an axis is at
+ * most their distance, and the Minkowski difference of the motion boxes
+ * bounds their relative motion. Two parts of a cloth that move together,
+ * whose boxes of the step overlap by as much as they move, are tested as
+ * if at rest.
+ */
+static int
+near_overlap(const double *pa, const double *ma, const double *pb, const double *mb, double near,
+    double share)
+{
+	double gap = 0, m2 = 0, r;
+	int k;
+
+	for (k = 0; k < 3; k++) {
+		double g1 = pb[k] - pa[3 + k], g2 = pa[k] - pb[3 + k];
+		double lo = ma[k] - mb[3 + k], hi = ma[3 + k] - mb[k];
+		double m = -lo > hi ? -lo : hi;
+
+		gap = g1 > gap ? g1 : gap;
+		gap = g2 > gap ? g2 : gap;
+		m2 += m * m;
+	}
+	r = gap - near;
+	return r <= 0 || r * r <= share * share * m2;
+}
+
+/* The near test of vertex v against triangle t. */
+static int
+near_vt(const struct broad *b, const struct geom *g, const struct broad_want *want, int v, int t)
+{
+	double pt[6], mt[6], pv[6], mv[6];
+	int k, a;
+
+	for (a = 0; a < 3; a++) {
+		pv[a] = pv[3 + a] = b->vnear[6 * v + a];
+		mv[a] = mv[3 + a] = b->vnear[6 * v + 3 + a];
+	}
+	box_empty(pt);
+	box_empty(mt);
+	for (k = 0; k < 3; k++) {
+		box_add(pt, b->vnear + 6 * g->tri[3 * t + k]);
+		box_add(mt, b->vnear + 6 * g->tri[3 * t + k] + 3);
+	}
+	return near_overlap(pv, mv, pt, mt, want->near, want->near_motion);
 }
 
 /* The node pairs (A, B) the chapter tests: A against the triangles that
@@ -888,7 +940,8 @@ bvh_leaves(struct broad *b, const struct geom *g, const struct broad_want *want,
 			int v = lv[k];
 
 			if ((v >= g->ncloth && !want->mesh_vertices) || tri_has(g, o, v) ||
-			    vt_static(g, v, o) || !box_overlap(b->qbox + 6 * v, ob))
+			    vt_static(g, v, o) || !box_overlap(b->qbox + 6 * v, ob) ||
+			    (want->near > 0 && !near_vt(b, g, want, v, o)))
 				continue;
 			if (push_vt(b, v, o) != 0)
 				return -1;
@@ -903,7 +956,9 @@ bvh_leaves(struct broad *b, const struct geom *g, const struct broad_want *want,
 		for (l = 0; l < neb; l++) {
 			int eb = lb[nvb + l];
 
-			if (!box_overlap(eba, b->ebox + 6 * eb) || ee_skip(g, ea, eb))
+			if (!box_overlap(eba, b->ebox + 6 * eb) || ee_skip(g, ea, eb) ||
+			    (want->near > 0 && !near_overlap(b->enear + 12 * ea, b->enear + 12 * ea + 6,
+			    b->enear + 12 * eb, b->enear + 12 * eb + 6, want->near, want->near_motion)))
 				continue;
 			if (push_ee(b, ea, eb) != 0)
 				return -1;
@@ -1060,6 +1115,26 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 		box_empty(eb);
 		allowed_box(eb, b, g->edge[2 * e]);
 		allowed_box(eb, b, g->edge[2 * e + 1]);
+	}
+	if (want->near > 0) {
+		if (grow((void **)&b->vnear, &b->vnearcap, 6 * (size_t)g->nv, sizeof *b->vnear) != 0 ||
+		    grow((void **)&b->enear, &b->enearcap, 12 * (g->nedges + 1), sizeof *b->enear) != 0)
+			return -1;
+		for (v = 0; v < g->nv; v++)
+			for (k = 0; k < 3; k++) {
+				b->vnear[6 * v + k] = g->x0[3 * v + k];
+				b->vnear[6 * v + 3 + k] = g->x1[3 * v + k] - g->x0[3 * v + k];
+			}
+		for (e = 0; e < g->nedges; e++) {
+			double *en = b->enear + 12 * e;
+
+			box_empty(en);
+			box_empty(en + 6);
+			for (k = 0; k < 2; k++) {
+				box_add(en, b->vnear + 6 * g->edge[2 * e + k]);
+				box_add(en + 6, b->vnear + 6 * g->edge[2 * e + k] + 3);
+			}
+		}
 	}
 	if (b->node == NULL)
 		return 0;

@@ -54,6 +54,11 @@ struct broad_want {
 	/* a node's box includes the segments from its neighbours at step k to
 	 * it (the seed test's sliding case, end of §3.2) */
 	bool neighbour_paths;
+	/* near > 0: of the pairs whose boxes overlap, only those that may lie
+	 * within near plus near_motion times their relative motion of the step
+	 * (x1 - x0 of g) at its start are needed (bvh leaves the others out;
+	 * the other modes find them all and leave the choice) */
+	double near, near_motion;
 };
 
 struct bvh_node {
@@ -118,6 +123,10 @@ struct broad {
 	size_t stackcap;
 	double *qbox;		/* per vertex: the box it is looked up with */
 	size_t qboxcap;
+	/* near: per vertex its position at the start and its motion (3 each);
+	 * per edge the boxes of those (6 each) */
+	double *vnear, *enear;
+	size_t vnearcap, enearcap;
 	int bvh_nv;		/* the geometry the tree was built for */
 	size_t bvh_ntri;
 	int *big;		/* grid: triangles, then edges, too big for the hash */

@@ -161,11 +161,14 @@ collide_begin(struct collide *c)
  * box from x to x + h v, widened by margin. */
 int
 collide_candidates(struct collide *c, const double *y0, double h, double margin, double share,
-    struct drape_err *err)
+    double near, double near_motion, struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)c->ncloth, k;
 	struct broad_want want = collide_broad_want(NARROW_CCD, c->opt.self);
 	int v;
+
+	want.near = near;
+	want.near_motion = near_motion;
 
 	c->br.stop = c->stop;
 	if (!c->active || !c->pairs) {

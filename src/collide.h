@@ -122,11 +122,13 @@ int collide_check(struct collide *c, long step, double dt, const double *y0, dou
     struct drape_err *err);
 
 /* The broad phase's pairs (in c's broad phase) for the motion the state
- * y0 would make over h at its velocities, each node's box widened by
- * margin and share of its own motion: the fast path's contacts are taken from them at a step's start
- * (contacts.h). 0, or -1 with a message. */
+ * y0 would make over h at its velocities, each node's box (c->box)
+ * widened by margin and share of its own motion, of which only those that
+ * may lie within near plus near_motion times their relative motion at the
+ * start are needed (broad_want): the fast path's contacts are taken from
+ * them at a step's start (contacts.h). 0, or -1 with a message. */
 int collide_candidates(struct collide *c, const double *y0, double h, double margin, double share,
-    struct drape_err *err);
+    double near, double near_motion, struct drape_err *err);
 
 /* Records a contact of the step as an event (and a correction); 0, or -1
  * out of memory. */

@@ -189,10 +189,8 @@ boxes_overlap(const struct collide *col, const struct contact_pair *cp)
 	return true;
 }
 
-/* Keeps the pair if it may come within the thickness during the step: its
- * boxes overlap, and its separation at the start, less one and a half
- * times its predicted relative motion (an allowance for the step's
- * accelerations), is under a thickness and a quarter. */
+/* Keeps the pair if it may come within the thickness during the step
+ * (CONTACTS_REACH, contacts.h). */
 static int
 consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp,
     const double *y0, double h)
@@ -219,7 +217,7 @@ consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp
 
 			rel = r > rel ? r : rel;
 		}
-	if (dist - 1.5 * rel >= 1.25 * ct->thickness)
+	if (dist - CONTACTS_REACH_MOTION * rel >= CONTACTS_REACH * ct->thickness)
 		return 0;
 	memcpy(cp->w, w, sizeof cp->w);
 	if (dist > 1e-12 * (1 + v3_len(p[0]))) {

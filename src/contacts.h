@@ -20,6 +20,13 @@
 
 #include "collide.h"
 
+/* A pair is kept if its boxes overlap and its separation at the step's
+ * start, less CONTACTS_REACH_MOTION times its predicted relative motion
+ * (an allowance for the step's accelerations), is under CONTACTS_REACH
+ * thicknesses. */
+#define CONTACTS_REACH 1.25
+#define CONTACTS_REACH_MOTION 1.5
+
 struct contact_pair {
 	int nv;			/* 4: a vertex against a triangle, or two edges */
 	int vert[4];		/* vertex 0 (edge a), then the triangle (edge b) */

@@ -370,7 +370,8 @@ fast_contacts(struct stepper *st, double h, struct step_failure *f)
 	contacts_clear(&st->ct);
 	if (!st->col.active || !st->col.pairs)
 		return STEP_OK;
-	if (collide_candidates(&st->col, st->y, h, 1.5 * st->sc->mat.thickness, 0.5, &cerr) != 0)
+	if (collide_candidates(&st->col, st->y, h, 1.5 * st->sc->mat.thickness, 0.5,
+	    CONTACTS_REACH * st->sc->mat.thickness, CONTACTS_REACH_MOTION, &cerr) != 0)
 		return collisions_failed(st, f, &cerr);
 	switch (contacts_find(&st->ct, &st->col, st->y, h)) {
 	case 0:

@@ -40,8 +40,8 @@ echo
 for st in $scenes; do
 	sc=${st%%:*}; t=${st#*:}
 	check_seconds "$t" "the T of $sc"
-	src=$srcdir/scenes/$sc.scene
-	[ -r "$src" ] || die "no scene $src"
+	src=$(chapter_scene "$sc")
+	[ -r "$src" ] || die "no scene $srcdir/scenes/$sc.scene"
 	for m in $modes; do
 		edit_scene "$src" "simulation.duration=$t s" "collision.self=on" \
 			"collision.broad=${m%-*}" "collision.narrow=${m#*-}" "collision.position=slide" \

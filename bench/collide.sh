@@ -45,8 +45,8 @@ echo "runs: median of $runs per scene and mode; simulated $until_t s (brute: the
 echo
 
 for sc in $scenes; do
-	src=$srcdir/scenes/$sc.scene
-	[ -r "$src" ] || die "no scene $src"
+	src=$(chapter_scene "$sc")
+	[ -r "$src" ] || die "no scene $srcdir/scenes/$sc.scene"
 	for m in $modes; do
 		mapfile -t e < <(edits "$m")
 		edit_scene "$src" ${e[@]+"${e[@]}"} >"$tmp/$sc-$m.scene"

@@ -59,7 +59,7 @@ integs="rk4 implicit-euler fast"
 # the whole runs also take fast with the tree broad phase, which the
 # shipped scenes (broad = grid, the chapter's kind) do not choose
 whole="$integs fast+bvh"
-opts_of() { case $1 in *+bvh) echo "--set collision.broad=bvh" ;; esac; }
+opts_of() { case $1 in *+bvh) echo "--set collision.broad=bvh" ;; *) echo "--set collision.broad=grid" ;; esac; }
 want() { case $skip in *" $1 "*) return 1 ;; esac; return 0; }
 
 echo "fast: $version (commit $commit), $stamp"

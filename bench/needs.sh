@@ -43,8 +43,8 @@ echo
 for st in $scenes; do
 	sc=${st%%:*}; t=${st#*:}
 	check_seconds "$t" "the T of $sc"
-	src=$srcdir/scenes/$sc.scene
-	[ -r "$src" ] || die "no scene $src"
+	src=$(chapter_scene "$sc")
+	[ -r "$src" ] || die "no scene $srcdir/scenes/$sc.scene"
 	for v in $variants; do
 		mapfile -t e < <(edits $v)
 		edit_scene "$src" "simulation.duration=$t s" ${e[@]+"${e[@]}"} >"$tmp/$sc-$v.scene"

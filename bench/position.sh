@@ -40,12 +40,16 @@ for v in "$until_t" "$step"; do
 		die "BENCH_POSITION_UNTIL and BENCH_POSITION_STEP are seconds > 0, not '$v'"
 done
 [ -x "$drape" ] || die "no binary at $drape: build first (make), or set DRAPE"
-src=$srcdir/scenes/strip.scene
-[ -r "$src" ] || die "no scene $src"
+[ -r "$srcdir/scenes/strip.scene" ] || die "no scene $srcdir/scenes/strip.scene"
 mkdir -p "$out" || die "cannot create $out"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/drape-bench.XXXXXX") || die "mktemp failed"
 trap 'rm -rf "$tmp"' EXIT
 trap 'exit 130' INT TERM
+# the chapter's integrator: the shipped strip runs the fast path (issue 14)
+src=$tmp/strip.scene
+sed -e 's/^integrator = fast$/integrator = rk4/' -e 's/^broad = bvh$/broad = grid/' \
+	"$srcdir/scenes/strip.scene" >"$src" || die "cannot write $src"
+grep -q "^integrator = rk4" "$src" || die "could not set rk4 in $src"
 
 settings() { # policy -> broad narrow position
 	case $1 in

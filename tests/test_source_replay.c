@@ -467,6 +467,8 @@ replay_totals_equal_live(void **state)
 	assert_true((fd = mkstemp(path)) >= 0);
 	close(fd);
 	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
+	sc.integrator = INTEG_RK4;	/* the chapter's method: thousands of contacts */
+	sc.col.broad = BROAD_GRID;
 	sc.duration = 0.15;
 	st = new_stepper(&sc);
 	if (record_open(&rec, path, st, 500, 0, &err) != 0)

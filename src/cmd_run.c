@@ -5,6 +5,7 @@
  * file would (override.h). The summary is the run's record (run_record.h),
  * as text (run_summary.c), JSON or CSV. */
 #include <errno.h>
+#include <math.h>
 #include <getopt.h>
 #include <signal.h>
 #include <stdio.h>
@@ -63,6 +64,7 @@ signal_word(int sig)
 
 struct run_opts {
 	const char *scene, *final_obj, *record, *resume;
+	const char *trace;	/* --trace: a TSV row per output frame */
 	double until, dt;	/* < 0: not given; dt 0: auto */
 	int integrator;		/* < 0: not given */
 	bool headless;
@@ -106,6 +108,7 @@ take_option(struct run_opts *o, int c, const char *arg)
 	case 'B': o->tui.glyphs = GLYPHS_BLOCKS; break;
 	case 'o': o->final_obj = arg; break;
 	case 'r': o->record = arg; break;
+	case 't': o->trace = arg; o->headless = true; break;
 	case 'R': o->resume = arg; break;
 	case 's': o->sets[o->nsets++] = arg; break;
 	case 'S':
@@ -175,6 +178,7 @@ parse_options(int argc, char **argv, struct run_opts *o)
 		{ "paused", no_argument, NULL, 'p' },
 		{ "final-obj", required_argument, NULL, 'o' },
 		{ "record", required_argument, NULL, 'r' },
+		{ "trace", required_argument, NULL, 't' },
 		{ "resume", required_argument, NULL, 'R' },
 		{ "keyframe-every", required_argument, NULL, 'k' },
 		{ "precision", required_argument, NULL, 'P' },
@@ -430,10 +434,87 @@ progress(const struct stepper *st, double wall)
 	    rate > 0 ? (r.t_end - r.t) / rate : 0);
 }
 
+/* --trace: a row per output frame (and one at the end) of the energy and of
+ * the locked nodes (stepper.h, struct lock_stats), the most and the
+ * corrections since the row before, for charts of a run's course. */
+struct trace {
+	FILE *f;
+	double frame, next;	/* s: the output interval, and the next row's time */
+	long k;			/* rows written */
+	int most;		/* the most nodes locked at a step since the last row */
+	double ke_most;		/* J: and the most kinetic energy they held */
+	long corrections;	/* since the last row */
+};
+
+static void
+trace_row(struct trace *tr, const struct stepper *st)
+{
+	struct stepper_report r;
+	struct energy e;
+
+	stepper_report(st, &r);
+	stepper_energy(st, &e);
+	fprintf(tr->f, "%.9g\t%ld\t%.6e\t%.6e\t%d\t%.6e\t%d\t%.6e\t%ld\t%ld\n", r.t, r.step,
+	    energy_total(&e), e.kinetic, r.locks->now, r.locks->ke_now, tr->most, tr->ke_most,
+	    r.locks->run_now, tr->corrections);
+	tr->most = 0;
+	tr->ke_most = 0;
+	tr->corrections = 0;
+	tr->k++;
+	tr->next = (double)tr->k * tr->frame;
+}
+
+/* After each step: the step's figures into the row's, and the row when its
+ * frame is reached. */
+static void
+trace_step(struct trace *tr, const struct stepper *st)
+{
+	struct stepper_report r;
+
+	stepper_report(st, &r);
+	tr->most = r.locks->now > tr->most ? r.locks->now : tr->most;
+	tr->ke_most = r.locks->ke_now > tr->ke_most ? r.locks->ke_now : tr->ke_most;
+	tr->corrections += r.last->n[STAT_CORRECTIONS];
+	if (r.t >= tr->next - 1e-12 * tr->frame || stepper_done(st))
+		trace_row(tr, st);
+}
+
+static int
+trace_open(struct trace *tr, const char *path, const struct stepper *st)
+{
+	struct stepper_report r;
+
+	memset(tr, 0, sizeof *tr);
+	if ((tr->f = fopen(path, "w")) == NULL) {
+		fprintf(stderr, "drape: --trace %s: %s\n", path, strerror(errno));
+		return -1;
+	}
+	stepper_report(st, &r);
+	tr->frame = 1 / stepper_scene(st)->output_rate;
+	tr->k = (long)floor(r.t / tr->frame + 1e-9);
+	fprintf(tr->f, "t\tstep\tenergy\tkinetic\tlocked\tlocked_kinetic\tlocked_most"
+	    "\tlocked_kinetic_most\tlock_run\tcorrections\n");
+	trace_row(tr, st);
+	return 0;
+}
+
+static int
+trace_close(struct trace *tr, const char *path)
+{
+	if (tr->f == NULL)
+		return 0;
+	if (ferror(tr->f) | (fclose(tr->f) != 0)) {
+		fprintf(stderr, "drape: --trace %s: cannot write it\n", path);
+		return -1;
+	}
+	return 0;
+}
+
 /* Steps to the end (or a failure, or a signal), recording into rec if not
  * NULL; an exit status, and in *end how it ended. */
 static int
-step_headless(struct stepper *st, struct recorder *rec, bool tty, struct run_end *end)
+step_headless(struct stepper *st, struct recorder *rec, struct trace *tr, bool tty,
+    struct run_end *end)
 {
 	struct step_failure *f = &end->f;
 	struct drape_err err;
@@ -451,10 +532,14 @@ step_headless(struct stepper *st, struct recorder *rec, bool tty, struct run_end
 		if (s != STEP_OK) {
 			if (tty)
 				fputc('\n', stderr);
+			if (tr != NULL)	/* the last good step, where the runaway ended */
+				trace_row(tr, st);
 			end->failed = true;
 			end->outcome = f->status == STEP_BLOWUP ? RUN_BLOWUP : RUN_ERROR;
 			return cmd_step_failed(NULL, path, f);
 		}
+		if (tr != NULL)
+			trace_step(tr, st);
 		if (rec != NULL && record_step(rec, st, &err) != 0) {
 			stepper_report(st, &r);
 			if (tty)
@@ -483,6 +568,7 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 {
 	bool tty = isatty(STDERR_FILENO);
 	struct recorder rec;
+	struct trace tr = { 0 };
 	struct drape_err err;
 	struct stepper_report r;
 	double t0;
@@ -493,10 +579,18 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 		fprintf(stderr, "drape: --record: %s\n", err.msg);
 		return EXIT_RUNTIME;
 	}
+	if (o->trace != NULL && trace_open(&tr, o->trace, st) != 0) {
+		if (o->record != NULL)
+			record_close(&rec, st, &err);
+		return EXIT_RUNTIME;
+	}
 	catch_signals();
 	stepper_set_stop(st, &interrupted);
 	t0 = clock_seconds();
-	rc = step_headless(st, o->record != NULL ? &rec : NULL, tty, end);
+	rc = step_headless(st, o->record != NULL ? &rec : NULL, o->trace != NULL ? &tr : NULL,
+	    tty, end);
+	if (trace_close(&tr, o->trace) != 0 && rc == EXIT_OK)
+		rc = EXIT_RUNTIME;
 	if (tty)
 		fputs("\r\033[K", stderr);
 	if (interrupted && rc == EXIT_OK) {

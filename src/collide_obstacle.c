@@ -11,6 +11,9 @@ int
 collide_obstacles_node(struct collide *c, long step, double dt, int v, bool ccd)
 {
 	size_t o;
+	/* §4 may answer the regular surfaces otherwise than the cloth */
+	enum position_policy pol = c->opt.obstacle_position >= 0 ?
+	    (enum position_policy)c->opt.obstacle_position : c->opt.position;
 
 	for (o = 0; o < c->nobst; o++) {
 		const struct obstacle *ob = &c->obst[o];
@@ -26,7 +29,10 @@ collide_obstacles_node(struct collide *c, long step, double dt, int v, bool ccd)
 		}
 		vn = response_node_velocity(vd, n, v3(0, 0, 0), c->opt.restitution, &fr, dt);
 		/* a node already inside at step k goes to the surface */
-		p = d0 < 0 ? q : response_position(c->opt.position, X0(c, v), q, v3_madd(q, n, d0));
+		p = d0 < 0 ? q : response_position(pol, X0(c, v), q, v3_madd(q, n, d0));
+		/* put back, it moves with the obstacle, which is at rest */
+		if (d0 >= 0 && pol == POSITION_KEEP && c->opt.keep_velocity == KEEP_VELOCITY_SURFACE)
+			vn = v3(0, 0, 0);
 		if (ccd && c->pairs)
 			p = collide_clamp_box(c, v, p);
 		if (obstacle_distance(ob, p, NULL, NULL) < 0) {

@@ -19,11 +19,60 @@ correct_node(struct collide *c, long step, double dt, int v, enum contact_type t
 	vec3 slid = v3_madd(v3_add(p0, v3_madd(d, n, -v3_dot(d, n))), n, v3_dot(vq, n) * dt);
 	vec3 p = response_position(c->opt.position, p0, q, slid);
 
+	if (c->opt.position == POSITION_KEEP && c->opt.keep_velocity == KEEP_VELOCITY_SURFACE)
+		vn = vq;	/* put back, it moves with the surface (response.h) */
+
 	v3_store(c->v1 + 3 * v, vn);
 	v3_store(c->x1 + 3 * v, p);
 	c->changed_next[v] = 1;
 	return collide_add_event(c, step, v, type, other, obstacle, q, n, v3_dot(vd, n),
 	    v3_dot(vn, n));
+}
+
+/* seed_response = shared (response.h): node v against triangle t of the
+ * cloth at Q, the impact of eq. 11 shared with the triangle's vertices by
+ * Q's barycentric weights and their masses; n is turned towards the
+ * node's side at step k. The node's position follows the policy; with
+ * keep the triangle's vertices go back to step k too. */
+static int
+correct_shared(struct collide *c, long step, double dt, int v, int t, enum contact_type type,
+    vec3 q, vec3 n)
+{
+	const int *tn = c->tri + 3 * t;
+	struct friction fr = collide_friction(c, -1);
+	int vert[4] = { v, tn[0], tn[1], tn[2] }, k;
+	double bw[3], w[4], im[4];
+	vec3 vel[4], vd = V1(c, v), p0 = X0(c, v), d = v3_sub(X1(c, v), p0), vq = v3(0, 0, 0);
+	vec3 slid;
+
+	collide_barycentric(q, X0(c, tn[0]), X0(c, tn[1]), X0(c, tn[2]), bw);
+	if (v3_dot(v3_sub(p0, q), n) < 0)
+		n = v3_scale(n, -1);
+	w[0] = 1;
+	for (k = 0; k < 4; k++) {
+		if (k > 0)
+			w[k] = -bw[k - 1];
+		im[k] = c->inv_mass[vert[k]];
+		vel[k] = V1(c, vert[k]);
+	}
+	if (response_shared(4, w, im, vel, n, c->opt.restitution, &fr, dt) < 0)
+		return 0;
+	for (k = 1; k < 4; k++)
+		vq = v3_madd(vq, vel[k], bw[k - 1]);
+	slid = v3_madd(v3_add(p0, v3_madd(d, n, -v3_dot(d, n))), n, v3_dot(vq, n) * dt);
+	for (k = 0; k < 4; k++) {
+		int p = vert[k];
+
+		if (im[k] == 0)
+			continue;
+		v3_store(c->v1 + 3 * p, vel[k]);
+		if (k == 0)
+			v3_store(c->x1 + 3 * p, response_position(c->opt.position, p0, q, slid));
+		else if (c->opt.position == POSITION_KEEP)
+			v3_store(c->x1 + 3 * p, X0(c, p));
+		c->changed_next[p] = 1;
+	}
+	return collide_add_event(c, step, v, type, t, -1, q, n, v3_dot(vd, n), v3_dot(vel[0], n));
 }
 
 int
@@ -51,6 +100,9 @@ collide_seed_pass(struct collide *c, long step, double dt, unsigned char *hit)
 				int f = v;
 				vec3 vq;
 
+				if ((s < 0 && c->opt.segments == SEGMENTS_EDGES) ||
+				    (s >= 0 && c->opt.segments == SEGMENTS_PATH))
+					continue;
 				if (s >= 0) {
 					const int *en = c->edge + 2 * c->vedge[c->vedge_start[v] + s];
 
@@ -64,8 +116,13 @@ collide_seed_pass(struct collide *c, long step, double dt, unsigned char *hit)
 					continue;
 				vq = response_point_velocity(a, b, cc, V1(c, tn[0]), V1(c, tn[1]),
 				    V1(c, tn[2]), h.q);
-				k = correct_node(c, step, dt, v, s < 0 ? h.type : CONTACT_EDGE_EDGE, t,
-				    c->tri_obstacle[t], h.q, h.n, vq);
+				if (c->opt.seed_response == SEED_RESPONSE_SHARED && c->tri_obstacle[t] < 0)
+					k = correct_shared(c, step, dt, v, t,
+					    s < 0 ? h.type : CONTACT_EDGE_EDGE, h.q, h.n);
+				else
+					k = correct_node(c, step, dt, v,
+					    s < 0 ? h.type : CONTACT_EDGE_EDGE, t, c->tri_obstacle[t],
+					    h.q, h.n, vq);
 				if (k != 0)
 					return -1;
 				hit[v] = 1;

@@ -7,6 +7,7 @@
 #include "narrow.h"
 
 const char *const narrow_mode_name[] = { "seed", "ccd", NULL };
+const char *const seed_segments_name[] = { "both", "path", "edges", NULL };
 const char *const contact_type_name[CONTACT_NTYPES] = {
 	"node-node", "node-edge", "node-face", "edge-edge", "obstacle"
 };

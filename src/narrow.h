@@ -21,6 +21,14 @@ enum inside_test {
 	INSIDE_CROSSING,	/* crossings of a ray from Q with the edges */
 };
 
+/* Which lines r the seed test draws to a node D at step k+1 (narrow =
+ * seed): its own path from step k (§3.1, the icosahedron's test), the
+ * edges F-D of its triangles from each neighbour F at step k (eq. 5-6;
+ * §3.2's sliding case, "the intersecting line r to be along the edge of
+ * the triangle containing the colliding node"), or both, in that order. */
+enum seed_segments { SEGMENTS_BOTH, SEGMENTS_PATH, SEGMENTS_EDGES };
+extern const char *const seed_segments_name[];	/* NULL-terminated, for the parser */
+
 enum contact_type {
 	CONTACT_NODE_NODE,	/* Q on a vertex of the triangle */
 	CONTACT_NODE_EDGE,	/* Q on an edge: an angle about Q is pi */

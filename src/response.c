@@ -5,6 +5,8 @@
 #include "response.h"
 
 const char *const position_policy_name[] = { "keep", "q", "slide", NULL };
+const char *const keep_velocity_name[] = { "eq16", "surface", NULL };
+const char *const seed_response_name[] = { "node", "shared", NULL };
 
 vec3
 response_position(enum position_policy p, vec3 x0, vec3 touch, vec3 slid)

@@ -14,6 +14,29 @@ enum position_policy {
 };
 extern const char *const position_policy_name[];	/* NULL-terminated, for the parser */
 
+/* What a node put back at step k by keep moves at (§3.2). eq16 is the
+ * chapter's: the velocity of eq. 16, whose tangential part the impact
+ * leaves (eq. 17), although the position the node is given did not move
+ * along the surface; in a resting contact the node is put back at every
+ * step, and its velocity then gathers the forces on it while it cannot move
+ * (the chapter's locking). surface gives it the contact point's velocity
+ * instead, all of it, so that a node that stays where it was also moves
+ * with the surface: what "no tangential displacement is allowed" means
+ * for its velocity. */
+enum keep_velocity { KEEP_VELOCITY_EQ16, KEEP_VELOCITY_SURFACE };
+extern const char *const keep_velocity_name[];	/* NULL-terminated, for the parser */
+
+/* Who takes a self-contact's impact with narrow = seed. node is the
+ * chapter's: "M >> m forces the triangle to keep its velocity" (§3.2),
+ * only the node is corrected. shared: the triangle is another part of the
+ * same cloth, as heavy as the node, so the inelastic impulse is shared by
+ * mass between the node and the triangle's vertices at Q (as ccd does),
+ * momentum kept; with keep the triangle's vertices go back to step k as
+ * well, so that the four nodes of the pair are where the network was
+ * consistent. */
+enum seed_response { SEED_RESPONSE_NODE, SEED_RESPONSE_SHARED };
+extern const char *const seed_response_name[];	/* NULL-terminated, for the parser */
+
 /* The one place that says what the policies mean: keep puts the node back
  * at x0, its position at step k (the chapter's choice, after Volino et
  * al.); q puts it where it touches the surface; slide restores step k's

@@ -173,6 +173,8 @@ visit_integrator(struct writer *w, const struct run_record *rec)
 	num(w, "time", "wall", true, wall);
 	num(w, "time", "speed", true, wall > 0 ? r->t / wall : 0);
 	num(w, "time", "steps_per_s", true, wall > 0 ? (double)r->step / wall : 0);
+	num(w, "time", "stepping", true, r->step_wall);
+	num(w, "time", "collisions", r->collisions, r->collide_wall);
 }
 
 static void
@@ -206,6 +208,10 @@ visit_collisions(struct writer *w, const struct run_record *rec)
 	num(w, "collisions", "cell", on, r->cell);
 	for (k = 0; k < STAT_COUNT; k++)
 		integer(w, "collisions", stat_field[k].name, on, on ? r->total->n[k] : 0);
+	integer(w, "locks", "node_steps", on, r->locks->node_steps);
+	integer(w, "locks", "most", on, r->locks->most);
+	integer(w, "locks", "longest", on, r->locks->longest);
+	num(w, "locks", "kinetic_most", on, r->locks->ke_most);
 }
 
 /* The spatial hash's means per fill, and its histogram over all fills. */

@@ -40,7 +40,11 @@ integrator_summary(FILE *f, const struct scene *sc, const struct stepper_report 
 		fprintf(f, ", %ld steps rejected", r->rejected);
 	fprintf(f, ")\n");
 	fprintf(f, "simulated    %.6g s\n", r->t);
-	fprintf(f, "wall time    %.3f s\n", wall);
+	fprintf(f, "wall time    %.3f s", wall);
+	if (r->collisions && r->step_wall > 0)
+		fprintf(f, " (collision stages %.3f s, %.1f %% of the steps' %.3f s)",
+		    r->collide_wall, 100 * r->collide_wall / r->step_wall, r->step_wall);
+	fprintf(f, "\n");
 	fprintf(f, "speed        %.4g x real time, %.0f steps/s\n", wall > 0 ? r->t / wall : 0,
 	    wall > 0 ? (double)r->step / wall : 0);
 }
@@ -86,6 +90,11 @@ collision_summary(FILE *f, const struct scene *sc, const struct stepper_report *
 	fprintf(f, "corrections  %ld (%ld put back to step k; at most %ld passes in a step; "
 	    "%ld steps unresolved)\n", n[STAT_CORRECTIONS], n[STAT_FROZEN], n[STAT_PASSES],
 	    n[STAT_UNRESOLVED]);
+	if (r->locks->node_steps > 0)
+		fprintf(f, "locked       %ld node-steps, at most %d nodes in a step, longest %ld "
+		    "steps in a row (%.4g s), kinetic energy of locked nodes at most %.4e J\n",
+		    r->locks->node_steps, r->locks->most, r->locks->longest,
+		    (double)r->locks->longest * r->dt_set, r->locks->ke_most);
 	if (r->uses_hash)
 		hash_summary(f, r->total, r->step);
 }

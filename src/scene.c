@@ -63,7 +63,7 @@ static const char *const move_keys[] = { "nodes", "velocity", "path", "start", "
 static const char *const load_keys[] = { "nodes", "force", "start", "stop", NULL };
 static const char *const collision_keys[] = {
 	"self", "broad", "narrow", "inside", "cell", "restitution", "friction", "viscous_friction",
-	"position", "memory", NULL
+	"position", "obstacle_position", "segments", "keep_velocity", "seed_response", "memory", NULL
 };
 static const char *const plane_keys[] = { "point", "normal", "friction", NULL };
 static const char *const box_keys[] = { "min", "max", "friction", NULL };
@@ -700,14 +700,29 @@ read_collision(struct pctx *c, const struct group *g)
 	struct collision_opts *o = &c->sc->col;
 	const struct ini_entry *e;
 	int self = 1, broad = o->broad, narrow = o->narrow, inside = o->inside;
-	int position = o->position;
+	int position = o->position, segments = o->segments, keep_velocity = o->keep_velocity;
+	int seed_response = o->seed_response;
+	/* obstacle_position: a policy's name, or "position" (the default) */
+	static const char *const obstacle_position_name[] = { "keep", "q", "slide", "position",
+	    NULL };
+	int obstacle_position = o->obstacle_position < 0 ? 3 : o->obstacle_position;
 
+	_Static_assert(POSITION_KEEP == 0 && POSITION_Q == 1 && POSITION_SLIDE == 2,
+	    "obstacle_position_name lists the policies in their order");
 	if (get_word(c, g, "self", switch_name, &self) < 0 ||
 	    get_word(c, g, "broad", broad_mode_name, &broad) < 0 ||
 	    get_word(c, g, "narrow", narrow_mode_name, &narrow) < 0 ||
 	    get_word(c, g, "inside", inside_test_name, &inside) < 0 ||
-	    get_word(c, g, "position", position_policy_name, &position) < 0)
+	    get_word(c, g, "position", position_policy_name, &position) < 0 ||
+	    get_word(c, g, "obstacle_position", obstacle_position_name, &obstacle_position) < 0 ||
+	    get_word(c, g, "segments", seed_segments_name, &segments) < 0 ||
+	    get_word(c, g, "keep_velocity", keep_velocity_name, &keep_velocity) < 0 ||
+	    get_word(c, g, "seed_response", seed_response_name, &seed_response) < 0)
 		return -1;
+	o->seed_response = seed_response;
+	o->keep_velocity = keep_velocity;
+	o->obstacle_position = obstacle_position == 3 ? -1 : obstacle_position;
+	o->segments = segments;
 	o->self = self;
 	o->broad = broad;
 	o->narrow = narrow;
@@ -958,6 +973,8 @@ set_defaults(struct scene *sc)
 	sc->col.narrow = NARROW_CCD;
 	sc->col.inside = INSIDE_ANGLE;
 	sc->col.position = POSITION_SLIDE;
+	sc->col.obstacle_position = -1;
+	sc->col.segments = SEGMENTS_BOTH;
 }
 
 static char *

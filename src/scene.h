@@ -75,6 +75,11 @@ struct collision_opts {
 	double friction;	/* Coulomb mu, cloth on cloth */
 	double viscous;		/* 1/s, viscous friction on sliding */
 	enum position_policy position;
+	/* the analytic obstacles' (§4): a position policy, or -1 for position's */
+	int obstacle_position;
+	enum seed_segments segments;	/* narrow = seed: the lines r it tests */
+	enum keep_velocity keep_velocity;	/* of a node put back by keep */
+	enum seed_response seed_response;	/* narrow = seed: who takes a self-contact */
 	double memory;		/* bytes the collision stages may take; 0 for auto */
 };
 

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "contacts.h"
 #include "implicit.h"
 #include "pbd.h"
@@ -26,6 +27,12 @@ struct stepper {
 	double omega;		/* bound on the highest angular frequency */
 	double v_limit;		/* a node faster than this has blown up */
 	long step;
+	/* locked nodes (struct lock_stats): per node, the steps in a row it
+	 * has been put back at step k; and which nodes the step corrected */
+	long *lock_run;
+	unsigned char *corrected;
+	struct lock_stats locks;
+	double step_wall, collide_wall;	/* s, over the committed steps */
 };
 
 /* dy/dt = (v, a); held nodes follow their prescribed velocity, unforced. */
@@ -162,6 +169,11 @@ init_collisions(struct stepper *st, double vscale, struct drape_err *err)
 	if (collide_init(&st->col, sc, &st->net.cl, st->net.pr.held, st->dt_set, vscale,
 	    err) != 0)
 		return -1;
+	if ((st->lock_run = calloc((size_t)st->net.cl.n, sizeof *st->lock_run)) == NULL ||
+	    (st->corrected = calloc((size_t)st->net.cl.n, 1)) == NULL) {
+		err_set(err, "%s: out of memory", sc->path);
+		return -1;
+	}
 	/* the fast path's long steps: a vertex's box is its own motion's.
 	 * Its substeps have held its contacts a thickness apart, so the
 	 * check's corrections are few and small, and a clamped one is taken
@@ -227,6 +239,8 @@ stepper_free(struct stepper *st)
 	pbd_free(&st->pb);
 	contacts_free(&st->ct);
 	network_free(&st->net);
+	free(st->lock_run);
+	free(st->corrected);
 	free(st->y);
 	free(st->y_next);
 	free(st);
@@ -384,14 +398,54 @@ fast_contacts(struct stepper *st, double h, struct step_failure *f)
 	}
 }
 
+/* The step's locked nodes into l (the run's figures carried over from
+ * st->locks): a free node the collision stages corrected and left exactly
+ * where it was at step k. Exact equality is what keep does (it copies step
+ * k's position); a node the integrator moved by any amount is not locked. */
+static void
+count_locks(struct stepper *st, struct lock_stats *l)
+{
+	const struct cloth *cl = &st->net.cl;
+	size_t n3 = 3 * (size_t)cl->n, e;
+	int p;
+
+	*l = st->locks;
+	l->now = 0;
+	l->ke_now = 0;
+	l->run_now = 0;
+	memset(st->corrected, 0, (size_t)cl->n);
+	for (e = 0; e < st->col.nev; e++)
+		if (st->col.ev[e].node >= 0 && st->col.ev[e].node < cl->n)
+			st->corrected[st->col.ev[e].node] = 1;
+	for (p = 0; p < cl->n; p++) {
+		const double *a = st->y + 3 * p, *b = st->y_next + 3 * p;
+		vec3 v = v3_load(st->y_next + n3 + 3 * p);
+
+		if (st->net.pr.held[p] || !st->corrected[p] || a[0] != b[0] || a[1] != b[1] ||
+		    a[2] != b[2]) {
+			st->lock_run[p] = 0;
+			continue;
+		}
+		st->lock_run[p]++;
+		l->now++;
+		l->ke_now += 0.5 * cl->mass[p] * v3_dot(v, v);
+		l->run_now = st->lock_run[p] > l->run_now ? st->lock_run[p] : l->run_now;
+	}
+	l->node_steps += l->now;
+	l->most = l->now > l->most ? l->now : l->most;
+	l->longest = l->run_now > l->longest ? l->run_now : l->longest;
+	l->ke_most = fmax(l->ke_most, l->ke_now);
+}
+
 enum step_status
 stepper_step(struct stepper *st, struct step_failure *f)
 {
 	size_t n3 = 3 * (size_t)st->net.cl.n;
 	double h = st->dt, h_next, remaining = st->t_end - st->t, t_new;
 	int last = 0, bad;
-	double *swap;
+	double *swap, t0 = clock_seconds(), c0;
 	struct drape_err cerr;
+	struct lock_stats locks;
 
 	if (h >= remaining * (1 - 1e-12)) {	/* land on the end exactly */
 		h = remaining;
@@ -445,19 +499,25 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	} else {
 		collide_begin(&st->col);
 	}
+	c0 = clock_seconds();
 	if (collide_check(&st->col, st->step, h, st->y, st->y_next, &cerr) != 0)
 		return collisions_failed(st, f, &cerr);
+	c0 = clock_seconds() - c0;
 	/* 4. blow-up check before anything is committed */
 	if ((bad = find_blowup(st, st->y_next, f->why, sizeof f->why)) >= 0 ||
 	    (bad = find_torn(st, st->y_next, f->why, sizeof f->why)) >= 0)
 		return failed(st, f, STEP_BLOWUP, bad);
 	/* 5. commit */
+	count_locks(st, &locks);
+	st->locks = locks;
 	swap = st->y;
 	st->y = st->y_next;
 	st->y_next = swap;
 	st->t = t_new;
 	st->step++;
 	st->dt = st->in.kind == INTEG_DOPRI5 ? fmin(h_next, st->dt_set) : st->dt_set;
+	st->collide_wall += c0;
+	st->step_wall += clock_seconds() - t0;
 	return STEP_OK;
 }
 
@@ -506,6 +566,9 @@ stepper_report(const struct stepper *st, struct stepper_report *r)
 	r->total = &st->col.total;
 	r->ev = st->col.ev;
 	r->nev = st->col.nev;
+	r->locks = &st->locks;
+	r->step_wall = st->step_wall;
+	r->collide_wall = st->collide_wall;
 }
 
 void
@@ -544,6 +607,9 @@ stepper_restore(struct stepper *st, const struct stepper_state *s, struct drape_
 	st->y_next = keep;
 	st->step = s->step;
 	st->dt = s->dt;
+	/* the locks are counted from here: a keyframe holds no lock runs */
+	memset(st->lock_run, 0, (size_t)st->net.cl.n * sizeof *st->lock_run);
+	memset(&st->locks, 0, sizeof st->locks);
 	return 0;
 }
 

@@ -90,6 +90,25 @@ uint64_t stepper_state_hash(const double *y, size_t nodes, double t);
  * vertices), for tests and audits. */
 const struct geom *stepper_geom(const struct stepper *st);
 
+/* Nodes locked in place: put back exactly where they were at step k by the
+ * collision stages (`position = keep`, or ccd's last resort), so that the
+ * step moved them not at all. The chapter's §3.2 names the locking ("a
+ * node to get locked in place along a surface where it should slide");
+ * these say how many, for how long, and what kinetic energy they hold
+ * while their position cannot change. Counted over the committed steps
+ * (a resumed run counts from its resume). */
+struct lock_stats {
+	/* the last step's */
+	int now;		/* nodes locked at it */
+	double ke_now;		/* J: their kinetic energy after the correction */
+	long run_now;		/* steps in a row the longest-locked of them has been locked */
+	/* the run's */
+	long node_steps;	/* nodes locked, summed over the steps */
+	int most;		/* the most nodes locked at one step */
+	long longest;		/* the most steps in a row a node stayed locked */
+	double ke_most;		/* J: the most kinetic energy the locked nodes held at one step */
+};
+
 /* What a run has done, as of its last step (read-only; the pointers are
  * valid until the next step). */
 struct stepper_report {
@@ -108,6 +127,10 @@ struct stepper_report {
 	const struct collide_stats *last, *total;	/* the last step's, and the run's */
 	const struct contact_event *ev;	/* the last step's events */
 	size_t nev;
+	const struct lock_stats *locks;
+	/* s of wall time over the committed steps: all of each step, and its
+	 * collision stages (broad and narrow phases and response) */
+	double step_wall, collide_wall;
 };
 void stepper_report(const struct stepper *st, struct stepper_report *r);
 

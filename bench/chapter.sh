@@ -60,7 +60,7 @@ describe() {
 	shared) echo "keep; section 4; impact shared with the triangle (departs from M >> m)" ;;
 	damped) echo "literal, damping 20 /s (the scenes': 2 /s)" ;;
 	slide) echo "drape's slide policy with the seed phases" ;;
-	shipped) echo "the shipped grid/ccd/slide (reference)" ;;
+	shipped) echo "rk4 with grid/ccd/slide, as the scenes shipped before the fast path (reference)" ;;
 	esac
 }
 for v in $variants; do settings "$v" >/dev/null; done
@@ -82,8 +82,10 @@ for s in $scenes; do
 		sets=()
 		for e in $(settings "$v"); do sets+=(--set "$e"); done
 		# s4-path is the shipped chapter scene itself (the same settings,
-		# the same state hash as the --set edits of the scene)
-		scene=$srcdir/scenes/$s.scene
+		# the same state hash as the --set edits of the scene); the others
+		# edit the shipped scene taken with the chapter's rk4 and the grid
+		# (chapter_scene: the shipped scenes run the fast path)
+		scene=$(chapter_scene "$s")
 		if [ "$v" = s4-path ]; then scene=$srcdir/scenes/chapter-$s.scene; sets=(); fi
 		[ -t 2 ] && printf '\r  %s %s          ' "$s" "$v" >&2
 		"$drape" run --headless --summary csv --trace "$tmp/trace.tsv" "${sets[@]}" \

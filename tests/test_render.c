@@ -679,11 +679,11 @@ same_frame_same_bytes(void **state)
 	snprintf(a, sizeof a, "%s/a.png", dir);
 	snprintf(b, sizeof b, "%s/b.png", dir);
 	snprintf(args, sizeof args, "snapshot --png '%s' --step 1000 --size 160x120 --color strain "
-	    "'" TOP_SRCDIR "/replays/tablecloth.drr'", a);
+	    "'" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'", a);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
 	snprintf(args, sizeof args, "snapshot --png '%s' --step 1000 --size 160x120 --color strain "
-	    "'" TOP_SRCDIR "/replays/tablecloth.drr'", b);
+	    "'" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'", b);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
 	pa = slurp_file(a, &la);
@@ -698,7 +698,7 @@ same_frame_same_bytes(void **state)
 	free(pb);
 	/* a filmstrip of three frames, side by side */
 	snprintf(args, sizeof args, "snapshot --png '%s' --strip 0,0.1,0.2 --size 100x80 "
-	    "--color contact '" TOP_SRCDIR "/replays/tablecloth.drr'", a);
+	    "--color contact '" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'", a);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
 	pa = slurp_file(a, &la);
@@ -727,14 +727,14 @@ unicode_snapshot(void **state)
 
 	(void)state;
 	drape(&r, "snapshot --unicode --size 40x12 --step 1000 '" TOP_SRCDIR
-	    "/replays/tablecloth.drr'");
+	    "/tests/data/tablecloth-rk4.drr'");
 	assert_int_equal(r.status, 0);
 	for (p = r.out; *p != '\0'; p++)
 		lines += *p == '\n';
 	assert_int_equal(lines, 12);
 	assert_non_null(strstr(r.out, "\xe2\xa3\xbf"));	/* a full braille cell */
 	/* not a terminal and not asked for: ASCII, whatever the locale */
-	drape(&r, "snapshot --size 40x12 --step 1000 '" TOP_SRCDIR "/replays/tablecloth.drr'");
+	drape(&r, "snapshot --size 40x12 --step 1000 '" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'");
 	assert_int_equal(r.status, 0);
 	for (p = r.out; *p != '\0'; p++)
 		assert_true((unsigned char)*p < 0x80);
@@ -746,7 +746,7 @@ bad_arguments(void **state)
 	struct result r;
 	char args[1200], out[600];
 	struct stat st;
-	const char *rp = "'" TOP_SRCDIR "/replays/tablecloth.drr'";
+	const char *rp = "'" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'";
 
 	(void)state;
 	snprintf(out, sizeof out, "%s/bad.png", dir);
@@ -814,7 +814,7 @@ plot_charts(void **state)
 	snprintf(out, sizeof out, "%s/plot.png", dir);
 	/* without gnuplot: said, exit 1, nothing written */
 	assert_int_equal(setenv("GNUPLOT", "/nonexistent/gnuplot", 1), 0);
-	snprintf(args, sizeof args, "plot --png '%s' '" TOP_SRCDIR "/replays/tablecloth.drr'", out);
+	snprintf(args, sizeof args, "plot --png '%s' '" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'", out);
 	drape(&r, args);
 	assert_int_equal(r.status, 1);
 	assert_non_null(strstr(r.err, "gnuplot not found"));

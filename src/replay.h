@@ -119,8 +119,12 @@ struct replay_writer {
 	/* keyframes written, for the index */
 	uint64_t *kstep, *koff;
 	size_t nkey, keycap;
-	unsigned char *buf, *zbuf;	/* scratch, grown as needed */
-	size_t bufcap, zbufcap;
+	unsigned char *buf;	/* scratch, grown as needed */
+	size_t bufcap;
+	/* the chunks being deflated beside the run, written in order a few
+	 * chunks later, at a flush or at close (replay.c write_chunk) */
+	struct replay_jobs *jobs;
+	long next_key;		/* the keyframe the next chunk is, or -1 */
 	uint64_t bytes;		/* written so far */
 	/* Pending frames and steps are also written out once flush_every
 	 * seconds of clock() have passed since they last were, so that a

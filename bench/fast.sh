@@ -25,8 +25,10 @@
 #      above rest after 1 s, fast and implicit-euler against RK4;
 #   8. the step: fast (bvh) at 5 to 160 ms on both scenes, timed and
 #      audited on every frame: the largest step before it misbehaves.
-# The TUI's speed and the side-by-side runs of Blender and Bullet are not
-# measured here (the last lines say so; the latter: bench/peers.sh).
+#   9. the TUI on the shipped tablecloth at 80 x 24 (tmux): the speed its
+#      status line shows once the run has ended; target at least real time.
+# The side-by-side runs of Blender and Bullet are not measured here
+# (bench/peers.sh).
 # Timing runs one job at a time.
 #
 # Writes fast.csv (whole runs), fast-scaling.csv, fast-refine.csv,
@@ -276,5 +278,34 @@ if want 8; then
 		$1, $2, $3, $4, $5, $6, $7, $8, $9 }' "$stcsv"
 	echo
 fi
-echo "not measured here: the TUI at 80 x 24 (target: at least real time), and Blender and"
-echo "Bullet side by side on the peers' scenes (bench/peers.sh: make bench-peers)"
+# ---- 9: the terminal interface at 80 x 24 ----
+# The shipped tablecloth in the TUI, in a tmux pane of 80 x 24 on a
+# private server: the status line's speed against real time once the
+# run has ended (the TUI caps nothing: it shows the speed it ran at).
+if want 9; then
+	if command -v tmux >/dev/null 2>&1; then
+		sock=drape-bench-$$
+		tmux -L "$sock" new-session -d -s tui -x 80 -y 24 \
+			"'$drape' '$srcdir/scenes/tablecloth.scene'" 2>/dev/null
+		line=
+		for i in $(seq 600); do
+			line=$(tmux -L "$sock" capture-pane -p -t tui 2>/dev/null | head -n 1)
+			case $line in *" end "*) break ;; esac
+			sleep 0.1
+		done
+		tmux -L "$sock" kill-server 2>/dev/null
+		x=$(printf '%s\n' "$line" | sed -n 's/.* \([0-9.]*\)x real .*/\1/p')
+		echo "status line: $line"
+		if [ -n "$x" ]; then
+			printf 'target: the TUI on the tablecloth at 80 x 24 at least real time: %sx: %s\n' \
+				"$x" "$(awk -v x="$x" 'BEGIN { print (x >= 1 ? "met" : "missed") }')"
+		else
+			echo "target: the TUI at 80 x 24: the run did not end within 60 s, or its status line did not read"
+		fi
+	else
+		echo "the TUI at 80 x 24: not measured (no tmux)"
+	fi
+	echo
+fi
+echo "not measured here: Blender and Bullet side by side on the peers' scenes"
+echo "(bench/peers.sh: make bench-peers)"

@@ -63,6 +63,7 @@ struct broad_want {
 
 struct bvh_node {
 	double box[6];
+	double size;		/* the box's width + height + depth: which side to descend */
 	int left, right;	/* children, or -1 for a leaf */
 	int tri;		/* a leaf's triangle */
 };
@@ -124,9 +125,9 @@ struct broad {
 	double *qbox;		/* per vertex: the box it is looked up with */
 	size_t qboxcap;
 	/* near: per vertex its position at the start and its motion (3 each);
-	 * per edge the boxes of those (6 each) */
-	double *vnear, *enear;
-	size_t vnearcap, enearcap;
+	 * per edge and per triangle the boxes of those (6 each) */
+	double *vnear, *enear, *tnear;
+	size_t vnearcap, enearcap, tnearcap;
 	int bvh_nv;		/* the geometry the tree was built for */
 	size_t bvh_ntri;
 	int *big;		/* grid: triangles, then edges, too big for the hash */

@@ -297,6 +297,21 @@ near_overlap(const double *pa, const double *ma, const double *pb, const double 
 	return r <= 0 || r * r <= share * share * m2;
 }
 
+/* The boxes (6 doubles each) of the positions and of the motions of the
+ * nv vertices vert, from vnear's 6 a vertex, into out (12). */
+static void
+near_boxes(double *out, const double *vnear, const int *vert, int nv)
+{
+	int k;
+
+	box_empty(out);
+	box_empty(out + 6);
+	for (k = 0; k < nv; k++) {
+		box_add(out, vnear + 6 * vert[k]);
+		box_add(out + 6, vnear + 6 * vert[k] + 3);
+	}
+}
+
 /* The near test of vertex v against triangle t. */
 static int
 near_vt(const struct broad *b, const struct broad_want *want, int v, int t)
@@ -1124,26 +1139,10 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 				b->vnear[6 * v + k] = g->x0[3 * v + k];
 				b->vnear[6 * v + 3 + k] = g->x1[3 * v + k] - g->x0[3 * v + k];
 			}
-		for (e = 0; e < g->nedges; e++) {
-			double *en = b->enear + 12 * e;
-
-			box_empty(en);
-			box_empty(en + 6);
-			for (k = 0; k < 2; k++) {
-				box_add(en, b->vnear + 6 * g->edge[2 * e + k]);
-				box_add(en + 6, b->vnear + 6 * g->edge[2 * e + k] + 3);
-			}
-		}
-		for (t = 0; t < g->ntri; t++) {
-			double *tn = b->tnear + 12 * t;
-
-			box_empty(tn);
-			box_empty(tn + 6);
-			for (k = 0; k < 3; k++) {
-				box_add(tn, b->vnear + 6 * g->tri[3 * t + k]);
-				box_add(tn + 6, b->vnear + 6 * g->tri[3 * t + k] + 3);
-			}
-		}
+		for (e = 0; e < g->nedges; e++)
+			near_boxes(b->enear + 12 * e, b->vnear, g->edge + 2 * e, 2);
+		for (t = 0; t < g->ntri; t++)
+			near_boxes(b->tnear + 12 * t, b->vnear, g->tri + 3 * t, 3);
 	}
 	if (b->node == NULL)
 		return 0;

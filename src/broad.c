@@ -49,6 +49,13 @@ broad_free(struct broad *b)
 	free(b->vnear);
 	free(b->enear);
 	free(b->tnear);
+	free(b->held_vt);
+	free(b->held_ee);
+	free(b->held_box);
+	free(b->dirty);
+	free(b->found);
+	free(b->dlist);
+	free(b->tbox);
 	memset(b, 0, sizeof *b);
 }
 
@@ -79,7 +86,8 @@ grow(void **p, size_t *cap, size_t need, size_t size)
 static double
 pair_bytes(const struct broad *b)
 {
-	return (double)b->vtcap * sizeof *b->vt + (double)b->eecap * sizeof *b->ee;
+	return (double)(b->vtcap + b->held_vtcap) * sizeof *b->vt +
+	    (double)(b->eecap + b->held_eecap) * sizeof *b->ee;
 }
 
 /* A pair list grown to hold need entries, within the memory limit. */
@@ -848,6 +856,7 @@ bvh_prepare(struct broad *b, const struct geom *g)
 
 	if (b->node != NULL && b->bvh_nv == g->nv && b->bvh_ntri == g->ntri)
 		return 0;
+	b->held_valid = false;	/* their queries need the tree they were found in */
 	free(b->node);
 	free(b->rep_vertex);
 	free(b->rep_edge);
@@ -1091,21 +1100,348 @@ bvh_sort(struct broad *b, const struct geom *g)
 	return 0;
 }
 
-static int
-find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_want *want)
+/* Refits the trees to the vertices' boxes (qbox), children after parents:
+ * from the last node back. */
+static void
+bvh_refit(struct broad *b, const struct geom *g)
 {
-	/* no skin: the grid's keeps its pairs over steps; these are found
-	 * anew each step, and a wider box only adds pairs to test */
-	double skin = 0;
-	int v, k, i;
-	size_t e;
+	int i, k;
 
-	if (bvh_prepare(b, g) != 0 ||
-	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0 ||
-	    grow((void **)&b->qbox, &b->qboxcap, 6 * (size_t)g->nv, sizeof *b->qbox) != 0 ||
-	    grow((void **)&b->ebox, &b->eboxcap, 6 * (g->nedges + 1), sizeof *b->ebox) != 0)
+	for (i = b->nnodes - 1; i >= 0; i--) {
+		struct bvh_node *n = &b->node[i];
+
+		box_empty(n->box);
+		if (leaf(n)) {
+			for (k = 0; k < 3; k++)
+				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k]),
+				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k] + 3);
+		} else {
+			box_add(n->box, b->node[n->left].box);
+			box_add(n->box, b->node[n->left].box + 3);
+			box_add(n->box, b->node[n->right].box);
+			box_add(n->box, b->node[n->right].box + 3);
+		}
+		n->size = n->box[3] - n->box[0] + n->box[4] - n->box[1] + n->box[5] - n->box[2];
+	}
+}
+
+/*
+ * ---- held pairs ----
+ *
+ * A traversal of a cloth against itself costs the same whatever the
+ * motion: its neighbours in the plane overlap at every level of the tree
+ * (some 40,000 node pairs a traversal on the tablecloth). Yet from one
+ * search to the next most vertices' boxes barely move: the fast path
+ * searches twice a step, at its start for the pairs its predicted motion
+ * may bring within reach, and at its end for the check over the motion it
+ * made, and the slow integrators' steps are short. So a traversal is made
+ * with every vertex's box widened by a skin, and its pairs are held with
+ * those boxes (a Verlet list); a later search takes from them the pairs of
+ * vertices whose boxes still lie inside their held ones ("clean"), by its
+ * own box test, and looks up only what touches the others ("dirty"): one
+ * query of the tree a dirty vertex, triangle and edge, whose boxes are
+ * still the held ones (they hold every clean vertex's box), and the pairs
+ * among dirty ones by testing each against each. When more than one
+ * vertex in HELD_DIRTY_SHARE is dirty, a traversal again. The pairs are
+ * exactly a traversal's of the search's own boxes (the same test on every
+ * pair, and sorted): only the cost differs.
+ */
+
+/* The skin, as a fraction of the cube edge L_ce (the grid's is 0.1). It
+ * pays where the searches' boxes move little from one to the next (rk4's
+ * short steps: a quarter fewer instructions on the tablecloth's first
+ * 0.05 s), and costs where a traversal serves one search more at most
+ * (the fast path's step: its check; +3 % with 0.05, +18 % with 0.3, for
+ * the larger boxes). So a traversal takes the skin when the last one
+ * without it served no later search, and keeps it while a skinned one
+ * serves at least HELD_SKIN_USES. */
+#define HELD_SKIN 0.05
+#define HELD_SKIN_USES 2
+/* Above one vertex in HELD_DIRTY_SHARE out of its held box, a traversal. */
+#define HELD_DIRTY_SHARE 8
+
+/* Whether the trees' traversals pair vertex v with triangle t at all (the
+ * cloth with itself only if asked, never mesh with mesh). */
+static int
+vt_wanted(const struct geom *g, const struct broad_want *want, int v, int t)
+{
+	int vc = v < g->ncloth, tc = g->tri[3 * t] < g->ncloth;
+
+	if (vc && tc)
+		return want->self;
+	return vc || (tc && want->mesh_vertices);
+}
+
+static int
+ee_wanted(const struct geom *g, const struct broad_want *want, int e, int f)
+{
+	int ec = g->edge[2 * e] < g->ncloth, fc = g->edge[2 * f] < g->ncloth;
+
+	return ec && fc ? want->self : ec || fc;
+}
+
+/* The leaves of both trees whose boxes overlap bx, into b->found: how
+ * many, or -1 out of memory. */
+static long
+bvh_query(struct broad *b, const double *bx)
+{
+	size_t top = 0, n = 0;
+
+	if (grow((void **)&b->stack, &b->stackcap, 8, sizeof *b->stack) != 0)
 		return -1;
-	b->st.cell = cell;
+	if (b->cloth_root >= 0)
+		b->stack[top++] = b->cloth_root;
+	if (b->mesh_root >= 0)
+		b->stack[top++] = b->mesh_root;
+	while (top > 0) {
+		const struct bvh_node *p = &b->node[b->stack[--top]];
+
+		if (!box_overlap(p->box, bx))
+			continue;
+		if (leaf(p)) {
+			if (n == b->foundcap &&
+			    grow((void **)&b->found, &b->foundcap, n + 1, sizeof *b->found) != 0)
+				return -1;
+			b->found[n++] = p->tri;
+			continue;
+		}
+		if (top + 2 > b->stackcap &&
+		    grow((void **)&b->stack, &b->stackcap, top + 2, sizeof *b->stack) != 0)
+			return -1;
+		b->stack[top++] = p->left;
+		b->stack[top++] = p->right;
+	}
+	return (long)n;
+}
+
+/* Each triangle's box of this search (its vertices' query boxes). */
+static int
+fill_tri_boxes(struct broad *b, const struct geom *g)
+{
+	size_t t;
+	int k;
+
+	if (grow((void **)&b->tbox, &b->tboxcap, 6 * (g->ntri + 1), sizeof *b->tbox) != 0)
+		return -1;
+	for (t = 0; t < g->ntri; t++) {
+		double *bx = b->tbox + 6 * t;
+
+		box_empty(bx);
+		for (k = 0; k < 3; k++) {
+			box_add(bx, b->qbox + 6 * g->tri[3 * t + k]);
+			box_add(bx, b->qbox + 6 * g->tri[3 * t + k] + 3);
+		}
+	}
+	return 0;
+}
+
+static int
+tri_dirty(const struct broad *b, const struct geom *g, int t)
+{
+	const int *n = g->tri + 3 * t;
+
+	return b->dirty[n[0]] | b->dirty[n[1]] | b->dirty[n[2]];
+}
+
+static int
+edge_dirty(const struct broad *b, const struct geom *g, int e)
+{
+	return b->dirty[g->edge[2 * e]] | b->dirty[g->edge[2 * e + 1]];
+}
+
+/* The held pairs of clean vertices, by this search's box test. */
+static int
+held_clean(struct broad *b, const struct geom *g)
+{
+	size_t i;
+
+	for (i = 0; i < b->held_nvt; i++) {
+		int v = b->held_vt[i].v, t = b->held_vt[i].t;
+
+		if (b->dirty[v] || tri_dirty(b, g, t) ||
+		    !box_overlap(b->qbox + 6 * v, b->tbox + 6 * t))
+			continue;
+		if (push_vt(b, v, t) != 0)
+			return -1;
+	}
+	for (i = 0; i < b->held_nee; i++) {
+		int e = b->held_ee[i].a, f = b->held_ee[i].b;
+
+		if (edge_dirty(b, g, e) || edge_dirty(b, g, f) ||
+		    !box_overlap(b->ebox + 6 * e, b->ebox + 6 * f))
+			continue;
+		if (push_ee(b, e, f) != 0)
+			return -1;
+	}
+	return 0;
+}
+
+/* A dirty vertex (edge) against the clean triangles (edges) of the trees,
+ * and a dirty triangle against the clean vertices. */
+static int
+held_query_vertex(struct broad *b, const struct geom *g, const struct broad_want *want, int v)
+{
+	long n = bvh_query(b, b->qbox + 6 * v), k;
+
+	for (k = 0; k < n; k++) {
+		int t = b->found[k];
+
+		if (tri_dirty(b, g, t) || tri_has(g, t, v) || vt_static(g, v, t) ||
+		    !vt_wanted(g, want, v, t) || !box_overlap(b->qbox + 6 * v, b->tbox + 6 * t))
+			continue;
+		if (push_vt(b, v, t) != 0)
+			return -1;
+	}
+	return n < 0 ? -1 : 0;
+}
+
+static int
+held_query_triangle(struct broad *b, const struct geom *g, const struct broad_want *want, int t)
+{
+	const double *tb = b->tbox + 6 * t;
+	long n = bvh_query(b, tb), k;
+	int j;
+
+	for (k = 0; k < n; k++) {
+		const int *l = b->rep_list + b->rep_start[b->found[k]];
+
+		for (j = 0; j < b->rep_nv[b->found[k]]; j++) {
+			int u = l[j];
+
+			if (b->dirty[u] || tri_has(g, t, u) || vt_static(g, u, t) ||
+			    !vt_wanted(g, want, u, t) || !box_overlap(b->qbox + 6 * u, tb))
+				continue;
+			if (push_vt(b, u, t) != 0)
+				return -1;
+		}
+	}
+	return n < 0 ? -1 : 0;
+}
+
+static int
+held_query_edge(struct broad *b, const struct geom *g, const struct broad_want *want, int e)
+{
+	const double *eb = b->ebox + 6 * e;
+	long n = bvh_query(b, eb), k;
+	int j;
+
+	for (k = 0; k < n; k++) {
+		int o = b->found[k];
+
+		for (j = b->rep_start[o] + b->rep_nv[o]; j < b->rep_start[o + 1]; j++) {
+			int f = b->rep_list[j];
+
+			if (edge_dirty(b, g, f) || ee_skip(g, e, f) || !ee_wanted(g, want, e, f) ||
+			    !box_overlap(eb, b->ebox + 6 * f))
+				continue;
+			if (push_ee(b, e, f) != 0)
+				return -1;
+		}
+	}
+	return n < 0 ? -1 : 0;
+}
+
+/* Every pair that touches a dirty vertex: against the clean side from the
+ * tree, dirty against dirty by testing each pair of the lists of dirty
+ * vertices, triangles and edges (b->dlist). */
+static int
+held_dirty(struct broad *b, const struct geom *g, const struct broad_want *want)
+{
+	size_t nv = 0, nt = 0, ne = 0, t, e, i, j;
+	int *dv, *dt, *de;
+	int v;
+
+	if (grow((void **)&b->dlist, &b->dlistcap, (size_t)g->nv + g->ntri + g->nedges + 1,
+	    sizeof *b->dlist) != 0)
+		return -1;
+	dv = b->dlist;
+	for (v = 0; v < g->nv; v++)
+		if (b->dirty[v] && (v < g->ncloth || want->mesh_vertices))
+			dv[nv++] = v;
+	dt = dv + nv;
+	for (t = 0; t < g->ntri; t++)
+		if (tri_dirty(b, g, (int)t))
+			dt[nt++] = (int)t;
+	de = dt + nt;
+	for (e = 0; want->edges && e < g->nedges; e++)
+		if (edge_dirty(b, g, (int)e))
+			de[ne++] = (int)e;
+	for (i = 0; i < nv; i++) {
+		if (held_query_vertex(b, g, want, dv[i]) != 0)
+			return -1;
+		for (j = 0; j < nt; j++)
+			if (!tri_has(g, dt[j], dv[i]) && !vt_static(g, dv[i], dt[j]) &&
+			    vt_wanted(g, want, dv[i], dt[j]) &&
+			    box_overlap(b->qbox + 6 * dv[i], b->tbox + 6 * (size_t)dt[j]) &&
+			    push_vt(b, dv[i], dt[j]) != 0)
+				return -1;
+	}
+	for (j = 0; j < nt; j++) {
+		if ((j & 255) == 255 && stop_asked(b))
+			return -1;
+		if (held_query_triangle(b, g, want, dt[j]) != 0)
+			return -1;
+	}
+	for (i = 0; i < ne; i++) {
+		if ((i & 255) == 255 && stop_asked(b))
+			return -1;
+		if (held_query_edge(b, g, want, de[i]) != 0)
+			return -1;
+		for (j = i + 1; j < ne; j++)
+			if (!ee_skip(g, de[i], de[j]) && ee_wanted(g, want, de[i], de[j]) &&
+			    box_overlap(b->ebox + 6 * (size_t)de[i], b->ebox + 6 * (size_t)de[j]) &&
+			    push_ee(b, de[i], de[j]) != 0)
+				return -1;
+	}
+	return 0;
+}
+
+/* Whether the held pairs can serve a search for want. */
+static int
+held_serves(const struct broad *b, const struct geom *g, const struct broad_want *want)
+{
+	const struct broad_want *h = &b->held_want;
+
+	return b->held_valid && b->held_nv == g->nv && !want->neighbour_paths &&
+	    !h->neighbour_paths && h->self == want->self && h->edges == want->edges &&
+	    h->mesh_vertices == want->mesh_vertices;
+}
+
+/* A search's pairs from the held ones (sorted if *sorted): 0, 1 when too
+ * many vertices left their boxes, -1 out of memory or stopped. */
+static int
+find_held(struct broad *b, const struct geom *g, const struct broad_want *want, bool *sorted)
+{
+	int v, ndirty = 0;
+
+	if (grow((void **)&b->dirty, &b->dirtycap, (size_t)g->nv, 1) != 0)
+		return -1;
+	for (v = 0; v < g->nv; v++) {
+		const double *a = b->allowed + 6 * v, *h = b->held_box + 6 * v;
+
+		b->dirty[v] = a[0] < h[0] || a[1] < h[1] || a[2] < h[2] ||
+		    a[3] > h[3] || a[4] > h[4] || a[5] > h[5];
+		ndirty += b->dirty[v];
+	}
+	if (ndirty > g->nv / HELD_DIRTY_SHARE)
+		return 1;
+	b->held_uses++;
+	b->nvt = b->nee = 0;
+	if (fill_tri_boxes(b, g) != 0 || held_clean(b, g) != 0)
+		return -1;
+	*sorted = ndirty == 0;
+	return ndirty == 0 ? 0 : held_dirty(b, g, want);
+}
+
+/* Each vertex's query box and each edge's box, from the vertices' boxes
+ * of the step widened by skin (b->allowed). */
+static void
+fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want *want,
+    double skin)
+{
+	size_t e;
+	int v, k;
+
 	fill_allowed(b, g, skin);
 	/* a vertex's query box, widened if asked to the segments from its
 	 * neighbours at step k (as the grid's) */
@@ -1127,9 +1463,104 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 		allowed_box(eb, b, g->edge[2 * e]);
 		allowed_box(eb, b, g->edge[2 * e + 1]);
 	}
-	if (want->near > 0) {
-		size_t t;
+}
 
+/* A traversal with every box widened by skin (if it pays, see HELD_SKIN),
+ * whose pairs (sorted) and
+ * boxes become the held ones. The tree keeps these boxes until the next
+ * traversal: the held pairs' queries rely on it. 0: the search's pairs are
+ * found (no skin), 1: they are to be taken from the held ones, -1 out of
+ * memory or stopped. */
+static int
+hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *want,
+    double skin)
+{
+	struct broad_want all = *want;
+	void *p;
+	size_t cap;
+
+	all.near = 0;
+	if (!b->held_valid)
+		skin = 0;
+	else if (b->held_skin > 0 ? b->held_uses < HELD_SKIN_USES : b->held_uses > 0)
+		skin = 0;
+	b->held_valid = false;
+	b->held_skin = skin;
+	b->held_uses = 0;
+	fill_query_boxes(b, g, want, skin);
+	bvh_refit(b, g);
+	b->nvt = b->nee = 0;
+	if (b->cloth_root >= 0 && want->self &&
+	    bvh_traverse(b, g, &all, b->cloth_root, b->cloth_root) != 0)
+		return -1;
+	if (b->cloth_root >= 0 && b->mesh_root >= 0 &&
+	    bvh_traverse(b, g, &all, b->cloth_root, b->mesh_root) != 0)
+		return -1;
+	if (bvh_sort(b, g) != 0 ||
+	    grow((void **)&b->held_box, &b->held_boxcap, 6 * (size_t)g->nv,
+	    sizeof *b->held_box) != 0)
+		return -1;
+	/* the found lists become the held ones, and the held ones' arrays
+	 * the next search's */
+	p = b->held_vt, cap = b->held_vtcap;
+	b->held_vt = b->vt, b->held_vtcap = b->vtcap, b->held_nvt = b->nvt;
+	b->vt = p, b->vtcap = cap, b->nvt = 0;
+	p = b->held_ee, cap = b->held_eecap;
+	b->held_ee = b->ee, b->held_eecap = b->eecap, b->held_nee = b->nee;
+	b->ee = p, b->eecap = cap, b->nee = 0;
+	memcpy(b->held_box, b->allowed, 6 * (size_t)g->nv * sizeof *b->allowed);
+	b->held_want = all;
+	b->held_nv = g->nv;
+	b->held_valid = true;
+	if (skin > 0) {		/* the search's own pairs come from find_held */
+		fill_query_boxes(b, g, want, 0);
+		return 1;
+	}
+	/* without a skin they are the held ones */
+	if (grow_pairs(b, (void **)&b->vt, &b->vtcap, b->held_nvt + 1, sizeof *b->vt) != 0 ||
+	    grow_pairs(b, (void **)&b->ee, &b->eecap, b->held_nee + 1, sizeof *b->ee) != 0)
+		return -1;
+	memcpy(b->vt, b->held_vt, b->held_nvt * sizeof *b->vt);
+	memcpy(b->ee, b->held_ee, b->held_nee * sizeof *b->ee);
+	b->nvt = b->held_nvt;
+	b->nee = b->held_nee;
+	return 0;
+}
+
+/* The pairs that pass want's near test, in order. */
+static void
+near_filter(struct broad *b, const struct broad_want *want)
+{
+	size_t i, k;
+
+	for (i = k = 0; i < b->nvt; i++)
+		if (near_vt(b, want, b->vt[i].v, b->vt[i].t))
+			b->vt[k++] = b->vt[i];
+	b->nvt = k;
+	for (i = k = 0; i < b->nee; i++) {
+		const double *p = b->enear + 12 * b->ee[i].a, *q = b->enear + 12 * b->ee[i].b;
+
+		if (near_overlap(p, p + 6, q, q + 6, want->near, want->near_motion))
+			b->ee[k++] = b->ee[i];
+	}
+	b->nee = k;
+}
+
+static int
+find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_want *want)
+{
+	bool sorted = true;
+	int v, k, rc = 1;
+	size_t e, t;
+
+	if (bvh_prepare(b, g) != 0 ||
+	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0 ||
+	    grow((void **)&b->qbox, &b->qboxcap, 6 * (size_t)g->nv, sizeof *b->qbox) != 0 ||
+	    grow((void **)&b->ebox, &b->eboxcap, 6 * (g->nedges + 1), sizeof *b->ebox) != 0)
+		return -1;
+	b->st.cell = cell;
+	fill_query_boxes(b, g, want, 0);
+	if (want->near > 0) {
 		if (grow((void **)&b->vnear, &b->vnearcap, 6 * (size_t)g->nv, sizeof *b->vnear) != 0 ||
 		    grow((void **)&b->enear, &b->enearcap, 12 * (g->nedges + 1), sizeof *b->enear) != 0 ||
 		    grow((void **)&b->tnear, &b->tnearcap, 12 * (g->ntri + 1), sizeof *b->tnear) != 0)
@@ -1146,30 +1577,20 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 	}
 	if (b->node == NULL)
 		return 0;
-	/* refit, children after parents: from the last node back */
-	for (i = b->nnodes - 1; i >= 0; i--) {
-		struct bvh_node *n = &b->node[i];
-
-		box_empty(n->box);
-		if (leaf(n)) {
-			for (k = 0; k < 3; k++)
-				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k]),
-				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k] + 3);
-		} else {
-			box_add(n->box, b->node[n->left].box);
-			box_add(n->box, b->node[n->left].box + 3);
-			box_add(n->box, b->node[n->right].box);
-			box_add(n->box, b->node[n->right].box + 3);
+	if (held_serves(b, g, want))
+		rc = find_held(b, g, want, &sorted);
+	if (rc == 1) {
+		sorted = true;
+		if ((rc = hold_traversal(b, g, want, HELD_SKIN * cell)) == 1) {
+			rc = find_held(b, g, want, &sorted);	/* none is out of its box */
+			b->held_uses = 0;	/* the later searches' */
 		}
-		n->size = n->box[3] - n->box[0] + n->box[4] - n->box[1] + n->box[5] - n->box[2];
 	}
-	if (b->cloth_root >= 0 && want->self &&
-	    bvh_traverse(b, g, want, b->cloth_root, b->cloth_root) != 0)
+	if (rc != 0 || (!sorted && bvh_sort(b, g) != 0))
 		return -1;
-	if (b->cloth_root >= 0 && b->mesh_root >= 0 &&
-	    bvh_traverse(b, g, want, b->cloth_root, b->mesh_root) != 0)
-		return -1;
-	return bvh_sort(b, g);
+	if (want->near > 0)
+		near_filter(b, want);
+	return 0;
 }
 
 static int

@@ -134,6 +134,29 @@ struct broad {
 	size_t nbig_tri, nbig, bigcap;
 	unsigned char *is_big;	/* per box */
 	size_t is_bigcap;
+	/* bvh: the pairs of the last search with a near test (a step's
+	 * contacts), before that test, and each vertex's box they were found
+	 * for; a later search whose vertices' boxes lie inside takes its pairs
+	 * from them (broad.c, find_held). held_valid: there are such pairs. */
+	struct vt_pair *held_vt;
+	size_t held_nvt, held_vtcap;
+	struct ee_pair *held_ee;
+	size_t held_nee, held_eecap;
+	double *held_box;
+	size_t held_boxcap;
+	unsigned char *dirty;	/* per vertex: out of its held box */
+	size_t dirtycap;
+	int *found;		/* a query's leaves */
+	size_t foundcap;
+	int *dlist;		/* the dirty vertices, triangles and edges */
+	size_t dlistcap;
+	double *tbox;		/* per triangle: its box, for the held pairs */
+	size_t tboxcap;
+	bool held_valid;
+	struct broad_want held_want;
+	int held_nv;
+	double held_skin;	/* the held boxes' widening */
+	long held_uses;		/* searches the held pairs served */
 	bool valid;		/* grid: the pairs may be kept (see broad.c) */
 	struct broad_want valid_want;
 	double valid_cell;

@@ -480,11 +480,139 @@ test_failsafe_jam(void **state)
 	scene_free(&sc);
 }
 
+/* One bvh search of g with boxes hull(xa, xb) widened by pad, on b; and
+ * the same on a fresh bvh, which has no pairs held and traverses: the
+ * lists must be the same, in the same order. Returns 1 if b took its
+ * pairs from held ones. */
+static int
+held_search(struct broad *b, struct geom g, const double *xa, const double *xb, double pad,
+    double cell, double near)
+{
+	struct broad_want want = collide_broad_want(NARROW_CCD, true);
+	struct broad fresh;
+	struct drape_err err;
+	double *box = malloc(6 * (size_t)g.nv * sizeof *box);
+	long uses = b->held_uses;
+	int v, k, served;
+
+	assert_non_null(box);
+	for (v = 0; v < g.nv; v++)
+		for (k = 0; k < 3; k++) {
+			box[6 * v + k] = fmin(xa[3 * v + k], xb[3 * v + k]) - pad;
+			box[6 * v + 3 + k] = fmax(xa[3 * v + k], xb[3 * v + k]) + pad;
+		}
+	g.x0 = xa;
+	g.x1 = xb;
+	g.vbox = box;
+	want.near = near;
+	want.near_motion = 1.5;
+	broad_init(&fresh, BROAD_BVH);
+	if (broad_find(b, &g, cell, &want, &err) != 0 || broad_find(&fresh, &g, cell, &want, &err) != 0)
+		fail_msg("%s", err.msg);
+	served = b->held_uses > uses;
+	assert_int_equal(b->nvt, fresh.nvt);
+	assert_int_equal(b->nee, fresh.nee);
+	assert_true(b->nvt == 0 || memcmp(b->vt, fresh.vt, b->nvt * sizeof *b->vt) == 0);
+	assert_true(b->nee == 0 || memcmp(b->ee, fresh.ee, b->nee * sizeof *b->ee) == 0);
+	broad_free(&fresh);
+	free(box);
+	return served;
+}
+
+/* bvh holds a traversal's pairs and serves later searches from them
+ * (broad.c, "held pairs"): what they give must be exactly a traversal's.
+ * The motions of a real run (the tablecloth falling on an icosahedron's
+ * mesh and on itself), searched as the fast path does (a search with a
+ * near test, then the check's over the motion made, with some vertices
+ * thrown out of their boxes), and as short steps do (small motions: the
+ * skin). */
+static void
+test_bvh_held_pairs(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct step_failure f;
+	struct broad b;
+	double *xa, *xb, *xc;
+	size_t nx;
+	long served = 0, searches = 0, skinned = 0, step;
+	unsigned rng = 12345;
+	int v, k, j;
+
+	(void)state;
+	load_shipped_with(&sc, SCENE_DIR "tablecloth.scene", "[box]\nmin = 0 0 -0.08 m\n"
+	    "max = 0.14 0.12 0.06 m", "[icosahedron]\ncentre = 0.03 0.05 -0.02 m\nradius = 0.07 m");
+	sc.duration = 1;
+	st = new_stepper(&sc);
+	nx = 3 * (size_t)stepper_geom(st)->nv;
+	xa = malloc(nx * sizeof *xa);
+	xb = malloc(nx * sizeof *xb);
+	xc = malloc(nx * sizeof *xc);
+	assert_true(xa != NULL && xb != NULL && xc != NULL);
+	assert_true(stepper_geom(st)->nv > cloth_of(st)->n);	/* the mesh's vertices */
+	memcpy(xa, stepper_geom(st)->x0, nx * sizeof *xa);
+	broad_init(&b, BROAD_BVH);
+	for (step = 0; !stepper_done(st); step++) {
+		const struct geom *g = stepper_geom(st);
+		double cell = report_of(st).cell;
+
+		if (stepper_step(st, &f) != STEP_OK)
+			fail_msg("step %ld: %s", f.step, f.why);
+		memcpy(xb, xa, nx * sizeof *xb);
+		memcpy(xb, stepper_x(st), 3 * (size_t)cloth_of(st)->n * sizeof *xb);
+		if (step % 5 == 0) {
+			/* the step's contacts, then its check with a few vertices
+			 * (one in 40) moved up to 5 mm beyond */
+			held_search(&b, *g, xa, xb, 0.8e-3, cell, 0.7e-3);
+			memcpy(xc, xb, nx * sizeof *xc);
+			for (v = 0; v < cloth_of(st)->n; v++) {
+				rng = rng * 1103515245u + 12345u;
+				if ((rng >> 16) % 40 == 0)
+					for (k = 0; k < 3; k++) {
+						rng = rng * 1103515245u + 12345u;
+						xc[3 * v + k] += 5e-3 * ((double)((rng >> 16) % 2001) / 1000 - 1);
+					}
+			}
+			served += held_search(&b, *g, xa, xc, 0, cell, 0);
+			/* short steps: two searches of the cloth moved 10 mm (the
+			 * first traversal serves none, so the second takes the
+			 * skin), then motions of a hundredth of a millimetre */
+			for (j = 0; j < 2; j++) {
+				memcpy(xc, xb, nx * sizeof *xc);
+				for (v = 0; v < cloth_of(st)->n; v++)
+					xc[3 * v + 1] += 1e-2 * (j + 1);
+				held_search(&b, *g, xc, xc, 0, cell, 0);
+			}
+			skinned += b.held_skin > 0;
+			memcpy(xb, xc, nx * sizeof *xb);
+			for (j = 0; j < 4; j++) {
+				for (v = 0; v < cloth_of(st)->n; v++)
+					xc[3 * v + 1] -= 1e-5;
+				served += held_search(&b, *g, xb, xc, 0, cell, 0);
+				memcpy(xb, xc, nx * sizeof *xb);
+			}
+			searches += 5;
+		}
+		memcpy(xa, stepper_x(st), 3 * (size_t)cloth_of(st)->n * sizeof *xa);
+	}
+	print_message("held pairs: %ld of %ld searches served from them (%ld held with a skin), "
+	    "each as a traversal's\n", served, searches, skinned);
+	assert_true(served > searches / 2);
+	assert_true(skinned > 0);
+	broad_free(&b);
+	free(xa);
+	free(xb);
+	free(xc);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_failsafe_jam),
+		cmocka_unit_test(test_bvh_held_pairs),
 		cmocka_unit_test(test_icosahedron),
 		cmocka_unit_test(test_tablecloth_clean),
 		cmocka_unit_test(test_strip_fast_clean),

@@ -47,7 +47,7 @@ lossy_precision(const struct replay *r)
 	size_t i;
 
 	for (i = 0; i < r->nchunks; i++)
-		if (r->chunk[i].kind == REPLAY_FRAMES_Q && replay_read_frames(r, i, &fr, &err) == 0) {
+		if (replay_frames_lossy(r->chunk[i].kind) && replay_read_frames(r, i, &fr, &err) == 0) {
 			double p = fr.precision;
 
 			replay_frames_free(&fr);
@@ -86,7 +86,8 @@ cmd_info(int argc, char **argv)
 			bytes[r.chunk[i].kind] += sizeof(struct replay_chunk_header) +
 			    r.chunk[i].comp_len;
 	count_events(&r, &nev, &t_end, &unreadable);
-	frame_bytes = bytes[REPLAY_FRAMES] + bytes[REPLAY_FRAMES_Q];
+	frame_bytes = bytes[REPLAY_FRAMES] + bytes[REPLAY_FRAMES_Q] + bytes[REPLAY_FRAMES_GRID] +
+	    bytes[REPLAY_FRAMES_GRID_Q];
 	precision = lossy_precision(&r);
 	node_frames = (double)m->nodes * (double)(r.nframes > 0 ? r.nframes : 1);
 

@@ -134,3 +134,119 @@ frames_decode_q(const unsigned char *in, size_t nframes, size_t ncoord, uint32_t
 	decode_words(in, nframes, ncoord, tmp);
 	memcpy(q, tmp, nframes * ncoord * sizeof *tmp);
 }
+
+/* ---- frames of a grid ---- */
+
+/* Word i of a frames array of 4-byte words (float or int32 bits). */
+static uint32_t
+word_at(const unsigned char *w, size_t i)
+{
+	uint32_t u;
+
+	memcpy(&u, w + 4 * i, 4);
+	return u;
+}
+
+/* LOCO-I's median edge detector on the neighbours' temporal differences
+ * left a, up b and up-left c, compared as int32 (the xor maps their
+ * order to unsigned order); a + b - c wraps modulo 2^32 both ways. */
+static uint32_t
+med(uint32_t a, uint32_t b, uint32_t c, int left, int up)
+{
+	uint32_t sa = a ^ 0x80000000u, sb = b ^ 0x80000000u, sc = c ^ 0x80000000u;
+	uint32_t hi = sa > sb ? sa : sb, lo = sa < sb ? sa : sb;
+
+	if (!left)
+		return up ? b : 0;
+	if (!up)
+		return a;
+	if (sc >= hi)
+		return lo ^ 0x80000000u;
+	if (sc <= lo)
+		return hi ^ 0x80000000u;
+	return a + b - c;
+}
+
+/* The temporal difference of coordinate k of node i in frame f of words
+ * w (frame -1 is all zero). */
+static uint32_t
+grid_tdiff(const unsigned char *w, size_t f, size_t nodes, size_t i, size_t k)
+{
+	size_t at = (f * nodes + i) * 3 + k;
+
+	return word_at(w, at) - (f > 0 ? word_at(w, at - 3 * nodes) : 0);
+}
+
+/* The prediction of node i's difference from its decoded neighbours. */
+static uint32_t
+grid_predict(const unsigned char *w, size_t f, size_t nodes, size_t width, size_t i, size_t k)
+{
+	int left = i % width > 0, up = i >= width;
+
+	return med(left ? grid_tdiff(w, f, nodes, i - 1, k) : 0,
+	    up ? grid_tdiff(w, f, nodes, i - width, k) : 0,
+	    left && up ? grid_tdiff(w, f, nodes, i - width - 1, k) : 0, left, up);
+}
+
+static void
+encode_grid(const unsigned char *w, size_t nframes, size_t nodes, size_t width, uint32_t *tmp,
+    unsigned char *out)
+{
+	size_t f, i, k;
+
+	for (k = 0; k < 3; k++)
+		for (f = 0; f < nframes; f++)
+			for (i = 0; i < nodes; i++)
+				tmp[(k * nframes + f) * nodes + i] = zigzag(grid_tdiff(w, f, nodes, i, k) -
+				    grid_predict(w, f, nodes, width, i, k));
+	codec_shuffle((const unsigned char *)tmp, out, 3 * nframes * nodes, 4);
+}
+
+/* Frame by frame, node by node, so that a node's neighbours and its own
+ * word of the frame before are decoded before it. */
+static void
+decode_grid(const unsigned char *in, size_t nframes, size_t nodes, size_t width, uint32_t *tmp,
+    unsigned char *w)
+{
+	size_t f, i, k;
+
+	codec_unshuffle(in, (unsigned char *)tmp, 3 * nframes * nodes, 4);
+	for (f = 0; f < nframes; f++)
+		for (i = 0; i < nodes; i++)
+			for (k = 0; k < 3; k++) {
+				size_t at = (f * nodes + i) * 3 + k;
+				uint32_t d = unzigzag(tmp[(k * nframes + f) * nodes + i]) +
+				    grid_predict(w, f, nodes, width, i, k);
+
+				d += f > 0 ? word_at(w, at - 3 * nodes) : 0;
+				memcpy(w + 4 * at, &d, 4);
+			}
+}
+
+void
+frames_encode_grid(const float *x, size_t nframes, size_t nodes, size_t width, uint32_t *tmp,
+    unsigned char *out)
+{
+	encode_grid((const unsigned char *)x, nframes, nodes, width > 0 ? width : 1, tmp, out);
+}
+
+void
+frames_decode_grid(const unsigned char *in, size_t nframes, size_t nodes, size_t width,
+    uint32_t *tmp, float *x)
+{
+	decode_grid(in, nframes, nodes, width > 0 ? width : 1, tmp, (unsigned char *)x);
+}
+
+void
+frames_encode_grid_q(const int32_t *q, size_t nframes, size_t nodes, size_t width,
+    uint32_t *tmp, unsigned char *out)
+{
+	encode_grid((const unsigned char *)q, nframes, nodes, width > 0 ? width : 1, tmp, out);
+}
+
+void
+frames_decode_grid_q(const unsigned char *in, size_t nframes, size_t nodes, size_t width,
+    uint32_t *tmp, int32_t *q)
+{
+	decode_grid(in, nframes, nodes, width > 0 ? width : 1, tmp, (unsigned char *)q);
+}

@@ -67,6 +67,7 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	m.output_rate = sc->output_rate;
 	m.keyframe_every = keyframe_every;
 	m.nodes = (uint32_t)cl->n;
+	m.width = cl->n == cl->nu * cl->nv ? (uint32_t)cl->nu : (uint32_t)cl->n;
 	m.triangles = (uint32_t)cl->ntri;
 	m.tri = cl->tri;
 	m.precision = precision;

@@ -338,7 +338,7 @@ write_header(struct replay_writer *w, uint32_t flags, uint64_t index_offset,
 
 	memset(&h, 0, sizeof h);
 	memcpy(h.magic, file_magic, 8);
-	h.version = w->precision > 0 ? REPLAY_VERSION : REPLAY_VERSION_LOSSLESS;
+	h.version = REPLAY_VERSION;
 	h.flags = flags;
 	h.nodes = w->nodes;
 	h.triangles = w->triangles;
@@ -400,6 +400,7 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 
 	memset(w, 0, sizeof *w);
 	w->nodes = m->nodes;
+	w->width = m->width >= 1 && m->width <= m->nodes ? m->width : m->nodes;
 	w->triangles = m->triangles;
 	w->keyframe_every = m->keyframe_every;
 	w->precision = m->precision > 0 && isfinite(m->precision) ? m->precision : 0;
@@ -469,7 +470,7 @@ flush_frames(struct replay_writer *w, struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)w->nodes, k = w->nframes, i;
 	bool lossy = w->precision > 0 && w->q_fits;
-	size_t head = lossy ? 8 : 0, len = head + k * (16 + 4 * n3);
+	size_t head = lossy ? 16 : 8, len = head + k * (16 + 4 * n3);
 	unsigned char *p;
 	uint32_t *tmp;
 	int rc;
@@ -483,17 +484,19 @@ flush_frames(struct replay_writer *w, struct drape_err *err)
 	p = w->buf;
 	if (lossy)
 		put64(p, dbits(w->precision));
+	put32(p + head - 8, w->width);
+	put32(p + head - 4, 0);
 	for (i = 0; i < k; i++) {
 		put64(p + head + 8 * i, w->fstep[i]);
 		put64(p + head + 8 * (k + i), dbits(w->ft[i]));
 	}
 	if (lossy)
-		frames_encode_q(w->fq, k, n3, tmp, p + head + 16 * k);
+		frames_encode_grid_q(w->fq, k, w->nodes, w->width, tmp, p + head + 16 * k);
 	else
-		frames_encode(w->fx, k, n3, tmp, p + head + 16 * k);
+		frames_encode_grid(w->fx, k, w->nodes, w->width, tmp, p + head + 16 * k);
 	free(tmp);
-	rc = write_chunk(w, lossy ? REPLAY_FRAMES_Q : REPLAY_FRAMES, w->fstep[0], (uint32_t)k, p,
-	    len, Z_BEST_COMPRESSION, err);
+	rc = write_chunk(w, lossy ? REPLAY_FRAMES_GRID_Q : REPLAY_FRAMES_GRID, w->fstep[0],
+	    (uint32_t)k, p, len, Z_BEST_COMPRESSION, err);
 	w->nframes = 0;
 	w->q_fits = true;
 	return rc;
@@ -871,6 +874,15 @@ read_at(const struct replay *r, uint64_t off, void *buf, size_t n)
 	return 0;
 }
 
+/* The bytes a frames chunk of kind has before its steps: the grid step
+ * (lossy), then the grid's width and a zero (version 3's kinds). */
+static uint64_t
+frames_head(uint32_t kind)
+{
+	return (replay_frames_lossy(kind) ? 8 : 0) +
+	    (kind == REPLAY_FRAMES_GRID || kind == REPLAY_FRAMES_GRID_Q ? 8 : 0);
+}
+
 /* The payload size a chunk header must have, checked before anything is
  * allocated for it: 0 if it is acceptable. */
 static int
@@ -887,8 +899,10 @@ check_chunk_header(const struct replay *r, const struct replay_chunk_header *h)
 		break;
 	case REPLAY_FRAMES:
 	case REPLAY_FRAMES_Q:
+	case REPLAY_FRAMES_GRID:
+	case REPLAY_FRAMES_GRID_Q:
 		if (h->count < 1 || h->count > MAX_FRAMES_CHUNK ||
-		    raw != (h->kind == REPLAY_FRAMES_Q ? 8 : 0) + (uint64_t)h->count * (16 + 12 * n))
+		    raw != frames_head(h->kind) + (uint64_t)h->count * (16 + 12 * n))
 			return -1;
 		break;
 	case REPLAY_KEYFRAME:
@@ -1336,7 +1350,8 @@ replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
 	const struct replay_chunk *c = &r->chunk[i];
 	size_t k = c->count, n3 = 3 * (size_t)r->hdr.nodes, j, head;
 	unsigned char *p;
-	uint32_t *tmp;
+	uint32_t *tmp, width;
+	bool grid;
 
 	memset(fr, 0, sizeof *fr);
 	if (!replay_is_frames(c->kind)) {
@@ -1345,8 +1360,16 @@ replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
 	}
 	if (inflate_chunk(r, c, &p, err) != 0)
 		return -1;
-	head = c->kind == REPLAY_FRAMES_Q ? 8 : 0;
-	if (head > 0) {
+	head = (size_t)frames_head(c->kind);
+	grid = c->kind == REPLAY_FRAMES_GRID || c->kind == REPLAY_FRAMES_GRID_Q;
+	width = grid ? get32(p + head - 8) : 0;
+	if (grid && (width < 1 || width > r->hdr.nodes || get32(p + head - 4) != 0)) {
+		free(p);
+		err_set(err, "chunk %zu: frames of a grid %u nodes wide: expected 1 to %u, then "
+		    "a zero word", c->ordinal, (unsigned)width, (unsigned)r->hdr.nodes);
+		return -1;
+	}
+	if (replay_frames_lossy(c->kind)) {
 		fr->precision = bitsd(get64(p));
 		if (!(fr->precision > 0) || !isfinite(fr->precision)) {
 			free(p);
@@ -1369,7 +1392,7 @@ replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
 		fr->step[j] = (long)(get64(p + head + 8 * j) & 0x7fffffffffffffffULL);
 		fr->t[j] = bitsd(get64(p + head + 8 * (k + j)));
 	}
-	if (head > 0) {
+	if (replay_frames_lossy(c->kind)) {
 		int32_t *q = malloc(k * n3 * sizeof *q);
 
 		if (q == NULL) {
@@ -1379,10 +1402,15 @@ replay_read_frames(const struct replay *r, size_t i, struct replay_frames *fr,
 			err_set(err, "chunk %zu: out of memory", c->ordinal);
 			return -1;
 		}
-		frames_decode_q(p + head + 16 * k, k, n3, tmp, q);
+		if (grid)
+			frames_decode_grid_q(p + head + 16 * k, k, r->hdr.nodes, width, tmp, q);
+		else
+			frames_decode_q(p + head + 16 * k, k, n3, tmp, q);
 		for (j = 0; j < k * n3; j++)
 			fr->x[j] = (float)((double)q[j] * fr->precision);
 		free(q);
+	} else if (grid) {
+		frames_decode_grid(p + head + 16 * k, k, r->hdr.nodes, width, tmp, fr->x);
 	} else {
 		frames_decode(p + 16 * k, k, n3, tmp, fr->x);
 	}

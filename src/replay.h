@@ -20,11 +20,10 @@
 #include "collide.h"
 #include "err.h"
 
-/* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q); a
- * writer marks a file version 2 only when it may hold them, so that a
- * lossless recording stays readable by a drape that reads version 1. */
-#define REPLAY_VERSION 2
-#define REPLAY_VERSION_LOSSLESS 1
+/* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q);
+ * version 3 writes its frames as chunks of the grid (REPLAY_FRAMES_GRID,
+ * REPLAY_FRAMES_GRID_Q), and reads every kind. */
+#define REPLAY_VERSION 3
 
 enum replay_kind {
 	REPLAY_META = 1,	/* scene text and resolved options */
@@ -33,14 +32,24 @@ enum replay_kind {
 	REPLAY_STEPS = 4,	/* statistics and events of consecutive steps */
 	REPLAY_INDEX = 5,	/* the keyframes' steps and offsets, at close */
 	REPLAY_FRAMES_Q = 6,	/* positions rounded to a grid (--precision) */
+	REPLAY_FRAMES_GRID = 7,	/* 2, predicted over the cloth's grid (version 3) */
+	REPLAY_FRAMES_GRID_Q = 8,	/* 6, the same way */
 };
-#define REPLAY_KIND_MAX REPLAY_FRAMES_Q
+#define REPLAY_KIND_MAX REPLAY_FRAMES_GRID_Q
 
 /* Frames chunks, exact or rounded: the same count, steps and times. */
 static inline int
 replay_is_frames(uint32_t kind)
 {
-	return kind == REPLAY_FRAMES || kind == REPLAY_FRAMES_Q;
+	return kind == REPLAY_FRAMES || kind == REPLAY_FRAMES_Q || kind == REPLAY_FRAMES_GRID ||
+	    kind == REPLAY_FRAMES_GRID_Q;
+}
+
+/* Frames chunks rounded to a grid step (--precision). */
+static inline int
+replay_frames_lossy(uint32_t kind)
+{
+	return kind == REPLAY_FRAMES_Q || kind == REPLAY_FRAMES_GRID_Q;
 }
 
 /* On-disk structs (little-endian; configure refuses big-endian hosts). */
@@ -83,6 +92,10 @@ struct replay_meta {
 	long keyframe_every;	/* steps between keyframes */
 	uint32_t nodes, triangles;
 	int *tri;		/* 3 per triangle, the cloth's, as OBJ faces */
+	/* The writer's: node i's neighbours across the cloth are i - 1 and
+	 * i - width (its grid's rows), for the frames' prediction; 0 for
+	 * none. Not in the scene chunk: each frames chunk says its own. */
+	uint32_t width;
 	/* The writer's: frames rounded to this grid step (m), 0 for exact
 	 * float32. Not in the scene chunk: each frames chunk says its own. */
 	double precision;
@@ -100,6 +113,7 @@ struct replay_writer {
 	FILE *f;
 	char *path;
 	uint32_t nodes, triangles;
+	uint32_t width;		/* the frames' grid (struct replay_meta) */
 	long keyframe_every;
 	bool failed;		/* a write failed: stop writing */
 	/* pending frames: float32, and when precision > 0 the same rounded to

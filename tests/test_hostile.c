@@ -459,7 +459,7 @@ export_exits_2(void **state)
 	snprintf(path, sizeof path, "%s/whole.drr", dir);
 	buf = read_whole(path, &len);
 	/* frame 0 at once, the others at the close (or on wall time) */
-	assert_true(chunk_offsets(buf, len, REPLAY_FRAMES, off, 4) >= 2);
+	assert_true(chunk_offsets(buf, len, REPLAY_FRAMES_GRID, off, 4) >= 2);
 
 	/* cut before the first frames chunk: no frame at all */
 	dir_write("noframe.drr", buf, (size_t)off[0]);

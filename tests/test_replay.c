@@ -163,6 +163,80 @@ codec_round_trip(void **state)
 	assert_memory_equal(x, back, sizeof x);
 }
 
+/* A frames chunk of the grid that says its grid is 0 nodes wide (the
+ * fuzz corpus's bad-width.drr, its CRC made again) is refused with what
+ * was expected; the file's other chunks read. */
+static void
+grid_width_refused(void **state)
+{
+	struct replay r;
+	struct replay_frames fr;
+	struct drape_err err;
+	size_t i, good = 0, bad = 0;
+
+	(void)state;
+	if (replay_open(&r, TOP_SRCDIR "/tests/fuzz/corpus/bad-width.drr", &err) != 0)
+		fail_msg("%s", err.msg);
+	for (i = 0; i < r.nchunks; i++) {
+		if (!replay_is_frames(r.chunk[i].kind))
+			continue;
+		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES_GRID);
+		if (replay_read_frames(&r, i, &fr, &err) == 0) {
+			replay_frames_free(&fr);
+			good++;
+			continue;
+		}
+		assert_non_null(strstr(err.msg, "frames of a grid 0 nodes wide: expected 1 to 9"));
+		bad++;
+	}
+	assert_int_equal(bad, 1);
+	assert_true(good >= 1);
+	replay_close(&r);
+}
+
+/* The grid's codec gives back any words, whatever the width (each node's
+ * neighbours, a row's start, one row, one column), exact and rounded:
+ * random bit patterns (NaNs and infinities among them), smooth motion,
+ * and words whose differences cross 2^31 either way. */
+static void
+codec_grid_round_trip(void **state)
+{
+	enum { F = 4, N = 35, W = 3 * F * N };
+	static float x[W], back[W];
+	static int32_t q[W], qback[W];
+	static uint32_t tmp[W];
+	static unsigned char packed[4 * W];
+	static const size_t widths[] = { 1, 2, 5, 7, 34, 35 };
+	uint32_t rng = 7;
+	size_t i, w, trial;
+
+	(void)state;
+	for (trial = 0; trial < 3; trial++) {
+		for (i = 0; i < W; i++) {
+			uint32_t u;
+
+			rng = rng * 1664525u + 1013904223u;
+			if (trial == 0)
+				u = rng;
+			else if (trial == 1)
+				memcpy(&u, &(float){ (float)(0.01 * (double)(i % (3 * N)) +
+				    0.003 * (double)(i / (3 * N)) - 0.2) }, 4);
+			else
+				u = (i & 1) ? 0x7fffffffu + (rng & 3) : 0x80000000u - (rng & 3);
+			memcpy(&x[i], &u, 4);
+			memcpy(&q[i], &u, 4);
+		}
+		for (w = 0; w < sizeof widths / sizeof widths[0]; w++) {
+			frames_encode_grid(x, F, N, widths[w], tmp, packed);
+			frames_decode_grid(packed, F, N, widths[w], tmp, back);
+			assert_memory_equal(x, back, sizeof x);
+			frames_encode_grid_q(q, F, N, widths[w], tmp, packed);
+			frames_decode_grid_q(packed, F, N, widths[w], tmp, qback);
+			assert_memory_equal(q, qback, sizeof q);
+		}
+	}
+}
+
 static int
 events_equal(const struct contact_event *a, const struct contact_event *b)
 {
@@ -209,7 +283,7 @@ round_trip(void **state)
 			assert_memory_equal(kf.y, tr.y + (size_t)kf.step * n6, n6 * sizeof *kf.y);
 			replay_keyframe_free(&kf);
 			nkey++;
-		} else if (c->kind == REPLAY_FRAMES) {
+		} else if (c->kind == REPLAY_FRAMES_GRID) {
 			struct replay_frames fr;
 
 			if (replay_read_frames(&r, i, &fr, &err) != 0)
@@ -262,7 +336,7 @@ round_trip(void **state)
  * --precision: the tiny run recorded with its frames on a 20 um grid.
  * Every coordinate of every frame is within half the grid step of the
  * run's (plus float32's own rounding of the result), the file says version
- * 2 and its frames chunks are the lossy kind, and everything else (steps,
+ * 3 and its frames chunks are the lossy kind, and everything else (steps,
  * events, keyframes) is as exact as without. A cloth whose coordinates
  * do not fit 32 bits of a 1 nm grid (5 m away) gets exact frames instead.
  */
@@ -283,7 +357,7 @@ lossy_round_trip(void **state)
 	record_text_p(&tr, lossy_path, tiny_scene, KEY_EVERY, grid);
 	if (replay_open(&r, lossy_path, &err) != 0)
 		fail_msg("replay_open: %s", err.msg);
-	assert_int_equal(r.hdr.version, 2);
+	assert_int_equal(r.hdr.version, 3);
 	n3 = 3 * (size_t)tr.n;
 	for (i = 0; i < r.nchunks; i++) {
 		struct replay_frames fr;
@@ -299,7 +373,7 @@ lossy_round_trip(void **state)
 		}
 		if (!replay_is_frames(r.chunk[i].kind))
 			continue;
-		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES_Q);
+		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES_GRID_Q);
 		if (replay_read_frames(&r, i, &fr, &err) != 0)
 			fail_msg("%s", err.msg);
 		assert_true(fr.precision == grid);
@@ -341,7 +415,7 @@ lossy_round_trip(void **state)
 
 		if (!replay_is_frames(r.chunk[i].kind))
 			continue;
-		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES);
+		assert_int_equal(r.chunk[i].kind, REPLAY_FRAMES_GRID);
 		if (replay_read_frames(&r, i, &fr, &err) != 0)
 			fail_msg("%s", err.msg);
 		for (j = 0; j < fr.count; j++, frames++)
@@ -955,15 +1029,15 @@ cli_precision(void **state)
 	snprintf(args, sizeof args, "info '%s'", out);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
-	assert_non_null(strstr(r.out, "(version 2, closed cleanly)"));
+	assert_non_null(strstr(r.out, "(version 3, closed cleanly)"));
 	assert_non_null(strstr(r.out, "6 at 200 per second, rounded to 1e-05 m (within 5e-06 m"));
 	snprintf(args, sizeof args, "export --pc2 '%s/lossy.pc2' '%s'", dir, out);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
-	/* exact frames: version 1, and no rounding said */
+	/* exact frames: no rounding said */
 	snprintf(args, sizeof args, "info '%s'", replay_path);
 	drape(&r, args);
-	assert_non_null(strstr(r.out, "(version 1, closed cleanly)"));
+	assert_non_null(strstr(r.out, "(version 3, closed cleanly)"));
 	assert_null(strstr(r.out, "rounded"));
 	for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
 		snprintf(args, sizeof args, "run --headless --precision '%s' --record '%s/bad.drr' '%s'",
@@ -1146,6 +1220,8 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(codec_round_trip),
+		cmocka_unit_test(codec_grid_round_trip),
+		cmocka_unit_test(grid_width_refused),
 		cmocka_unit_test(round_trip),
 		cmocka_unit_test(lossy_round_trip),
 		cmocka_unit_test(cut_at_every_byte),

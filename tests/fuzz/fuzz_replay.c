@@ -5,7 +5,12 @@
  * The seeds in corpus/: whole.drr from
  *	cd tests/fuzz && drape run --record whole.drr --keyframe-every 20 seed.scene
  * and from it cut.drr (its first 1500 bytes), flipped.drr (bit 4 of byte
- * 700 flipped) and header-only.drr (its first 64 bytes). */
+ * 700 flipped) and header-only.drr (its first 64 bytes); lossy.drr the
+ * same with --precision 10um. Those are version 1 and 2 files; the same
+ * two recorded by version 3 (frames of the grid, kinds 7 and 8) are
+ * whole-v3.drr and lossy-v3.drr, and bad-width.drr is whole-v3.drr with
+ * its first frames chunk saying a grid 0 nodes wide (its CRC made
+ * again). */
 #include <stddef.h>
 #include <stdint.h>
 
@@ -30,6 +35,8 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		switch (r.chunk[i].kind) {
 		case REPLAY_FRAMES:
 		case REPLAY_FRAMES_Q:
+		case REPLAY_FRAMES_GRID:
+		case REPLAY_FRAMES_GRID_Q:
 			if (replay_read_frames(&r, i, &fr, &err) == 0)
 				replay_frames_free(&fr);
 			break;

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "clock.h"
@@ -180,7 +182,7 @@ deflate_all(unsigned char *out, uLongf *out_len, const unsigned char *raw, size_
 #define JOBS 4
 
 struct replay_job {
-	bool busy, threaded;
+	bool busy, threaded, provisional;
 	pthread_t thread;
 	uint32_t kind, count;
 	uint64_t first_step;
@@ -237,6 +239,15 @@ job_finish_one(struct replay_writer *w, struct drape_err *err)
 		err_set(err, "%s: deflate failed", w->path);
 		return -1;
 	}
+	/* a chunk of the run's data goes over the provisional ones */
+	if (!j->provisional && w->prov_at > 0) {
+		errno = 0;
+		if (fflush(w->f) != 0 || fseeko(w->f, (off_t)w->prov_at, SEEK_SET) != 0)
+			return write_fail(w, err);
+		w->bytes = w->prov_at;
+		w->prov_at = 0;
+		w->cut_due = true;
+	}
 	if (j->key >= 0)
 		w->koff[j->key] = w->bytes;
 	memcpy(h.magic, chunk_magic, 4);
@@ -252,6 +263,12 @@ job_finish_one(struct replay_writer *w, struct drape_err *err)
 	errno = 0;
 	if (fflush(w->f) != 0)
 		return write_fail(w, err);
+	/* what is left of longer provisional chunks goes */
+	if (w->cut_due) {
+		w->cut_due = false;
+		if (ftruncate(fileno(w->f), (off_t)w->bytes) != 0)
+			return write_fail(w, err);
+	}
 	return 0;
 }
 
@@ -280,6 +297,7 @@ write_chunk(struct replay_writer *w, uint32_t kind, uint64_t first_step, uint32_
 
 	w->next_key = -1;
 	if (w->failed) {
+		w->next_provisional = false;
 		err_set(err, "%s: not written after an earlier write error", w->path);
 		return -1;
 	}
@@ -305,6 +323,8 @@ write_chunk(struct replay_writer *w, uint32_t kind, uint64_t first_step, uint32_
 	j->strategy = kind == REPLAY_STEPS ? STEPS_STRATEGY :
 	    replay_is_frames(kind) ? FRAMES_STRATEGY : Z_DEFAULT_STRATEGY;
 	j->key = key;
+	j->provisional = w->next_provisional;
+	w->next_provisional = false;
 	j->busy = true;
 	q->n++;
 	j->threaded = pthread_create(&j->thread, NULL, job_deflate, j) == 0;
@@ -435,7 +455,13 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 		err_set(err, "%s: cannot create: %s", path, strerror(errno));
 		goto fail;
 	}
-	if (write_header(w, 0, 0, err) != 0 || write_meta(w, m, err) != 0)
+	if (write_header(w, 0, 0, err) != 0)
+		goto fail;
+	/* offsets count from the file's start (the index's and the
+	 * header's; they were 64 short, the header's own length, before
+	 * replay version 3's writer) */
+	w->bytes = sizeof(struct replay_file_header);
+	if (write_meta(w, m, err) != 0)
 		goto fail;
 	return 0;
 fail:
@@ -460,7 +486,7 @@ fail:
 	return -1;
 }
 
-static int flush_steps(struct replay_writer *w, struct drape_err *err);
+static int flush_steps(struct replay_writer *w, bool keep, struct drape_err *err);
 static int flush_if_due(struct replay_writer *w, struct drape_err *err);
 
 /*
@@ -474,7 +500,7 @@ static int flush_if_due(struct replay_writer *w, struct drape_err *err);
  * a step of a nanometre) is written exact instead: nothing is lost.
  */
 static int
-flush_frames(struct replay_writer *w, struct drape_err *err)
+flush_frames(struct replay_writer *w, bool keep, struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)w->nodes, k = w->nframes, i;
 	bool lossy = w->precision > 0 && w->q_fits;
@@ -503,10 +529,13 @@ flush_frames(struct replay_writer *w, struct drape_err *err)
 	else
 		frames_encode_grid(w->fx, k, w->nodes, w->width, tmp, p + head + 16 * k);
 	free(tmp);
+	w->next_provisional = keep;
 	rc = write_chunk(w, lossy ? REPLAY_FRAMES_GRID_Q : REPLAY_FRAMES_GRID, w->fstep[0],
 	    (uint32_t)k, p, len, FRAMES_LEVEL, err);
-	w->nframes = 0;
-	w->q_fits = true;
+	if (!keep) {
+		w->nframes = 0;
+		w->q_fits = true;
+	}
 	return rc;
 }
 
@@ -541,7 +570,7 @@ replay_write_frame(struct replay_writer *w, long step, double t, const double *x
 	 * shipped tablecloth's 2.1 MB of events: 22 ms, a run's 3 %); short
 	 * steps fill their chunks first */
 	if (++w->nframes == w->frames_per_chunk)
-		return flush_frames(w, err) != 0 ? -1 : flush_steps(w, err);
+		return flush_frames(w, false, err) != 0 ? -1 : flush_steps(w, false, err);
 	return flush_if_due(w, err);
 }
 
@@ -716,7 +745,7 @@ pack_events(const struct contact_event *ev, size_t nev, uint64_t first_step, uns
 }
 
 static int
-flush_steps(struct replay_writer *w, struct drape_err *err)
+flush_steps(struct replay_writer *w, bool keep, struct drape_err *err)
 {
 	size_t k = w->nsteps, nev = w->nev, i, len = 8 + 8 * NSTAT * k + EVENT_BYTES * nev;
 	uint64_t *words = NULL, *tmp64 = NULL, first;
@@ -745,14 +774,17 @@ flush_steps(struct replay_writer *w, struct drape_err *err)
 	for (c = 0; c < NSTAT; c++)
 		pack_col64(words + (size_t)c * k, k, w->buf + 8 + 8 * (size_t)c * k);
 	pack_events(w->ev, nev, first, w->buf + 8 + 8 * NSTAT * k, tmp32, tmp64);
+	w->next_provisional = keep;
 	rc = write_chunk(w, REPLAY_STEPS, first, (uint32_t)k, w->buf, len, STEPS_LEVEL,
 	    err);
 out:
 	free(words);
 	free(tmp32);
 	free(tmp64);
-	w->nsteps = 0;
-	w->nev = 0;
+	if (!keep) {
+		w->nsteps = 0;
+		w->nev = 0;
+	}
 	return rc;
 }
 
@@ -781,7 +813,7 @@ replay_write_step(struct replay_writer *w, const struct replay_step *s,
 	}
 	w->steps[w->nsteps++] = *s;
 	if (w->nsteps == w->steps_per_chunk || w->nev >= EVENTS_PER_CHUNK)
-		return flush_steps(w, err);
+		return flush_steps(w, false, err);
 	return flush_if_due(w, err);
 }
 
@@ -794,23 +826,44 @@ replay_writer_flush(struct replay_writer *w, struct drape_err *err)
 	}
 	if (w->clock != NULL)
 		w->last_flush = w->clock();
-	return flush_frames(w, err) != 0 || flush_steps(w, err) != 0 ||
+	return flush_frames(w, false, err) != 0 || flush_steps(w, false, err) != 0 ||
 	    job_finish(w, err) != 0 ? -1 : 0;
 }
 
 
 /* The wall-clock flush: what is pending goes out once flush_every seconds
- * have passed since the last time. */
+ * have passed since the last time, as provisional chunks (struct
+ * replay_writer): the chunks in flight first, then the pending frames
+ * and steps, deflated here and kept pending. Once a second at most. */
 static int
 flush_if_due(struct replay_writer *w, struct drape_err *err)
 {
+	uint64_t at;
+
 	if (w->clock == NULL || w->nframes + w->nsteps == 0 ||
 	    !(w->clock() - w->last_flush >= w->flush_every))
 		return 0;
-	/* all of it in the file, so that a crash loses about flush_every of
-	 * the run at most: the run waits for the chunks in flight here, once
-	 * a second */
-	return replay_writer_flush(w, err);
+	w->last_flush = w->clock();
+	if (job_finish(w, err) != 0)
+		return -1;
+	/* over the last provisional chunks, if the run's chunks have not
+	 * gone over them yet */
+	at = w->prov_at > 0 ? w->prov_at : w->bytes;
+	errno = 0;
+	if (w->prov_at > 0 && (fflush(w->f) != 0 || fseeko(w->f, (off_t)at, SEEK_SET) != 0))
+		return write_fail(w, err);
+	w->bytes = at;
+	w->prov_at = at;
+	w->cut_due = true;
+	if (flush_frames(w, true, err) != 0 || flush_steps(w, true, err) != 0 ||
+	    job_finish(w, err) != 0)
+		return -1;
+	if (w->cut_due) {	/* no provisional chunk wrote it */
+		w->cut_due = false;
+		if (ftruncate(fileno(w->f), (off_t)w->bytes) != 0)
+			return write_fail(w, err);
+	}
+	return 0;
 }
 
 int
@@ -824,7 +877,7 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 	if (w->f == NULL)
 		return 0;
 	if (!w->failed) {
-		if (flush_frames(w, err) != 0 || flush_steps(w, err) != 0 || job_finish(w, err) != 0)
+		if (flush_frames(w, false, err) != 0 || flush_steps(w, false, err) != 0 || job_finish(w, err) != 0)
 			rc = -1;
 	}
 	job_finish(w, NULL);	/* given up after an error: the threads joined */

@@ -139,15 +139,21 @@ struct replay_writer {
 	 * chunks later, at a flush or at close (replay.c write_chunk) */
 	struct replay_jobs *jobs;
 	long next_key;		/* the keyframe the next chunk is, or -1 */
-	uint64_t bytes;		/* written so far */
+	bool next_provisional;	/* the next chunk is (see flush_every) */
+	uint64_t bytes;		/* the file's position: the chunks before it */
 	/* Pending frames and steps are also written out once flush_every
 	 * seconds of clock() have passed since they last were, so that a
-	 * crash loses at most about that much of the run. Open sets
-	 * REPLAY_FLUSH_SECONDS and the monotonic clock; a test may set
-	 * others. Only chunk boundaries depend on it, never the content. */
+	 * crash loses at most about twice that much of the run: as
+	 * provisional chunks at the file's end (from prov_at on, 0 for
+	 * none), which the next chunk the run's data makes is written over
+	 * (the file cut after it), so that the file's bytes do not depend on
+	 * the clock. Open sets REPLAY_FLUSH_SECONDS and the monotonic clock;
+	 * a test may set others. */
 	double flush_every;
 	double (*clock)(void);
 	double last_flush;
+	uint64_t prov_at;
+	bool cut_due;		/* the file to be cut after the next chunk */
 };
 
 #define REPLAY_FLUSH_SECONDS 1.0

@@ -270,6 +270,9 @@ round_trip(void **state)
 	assert_string_equal(r.meta.text, tiny_scene);
 	assert_string_equal(r.meta.name, "tiny");
 	assert_int_equal(r.last_step, tr.nsteps - 1);
+	/* the header points at the index chunk, from the file's start */
+	assert_int_equal(r.chunk[r.nchunks - 1].kind, REPLAY_INDEX);
+	assert_int_equal(r.hdr.index_offset, r.chunk[r.nchunks - 1].offset);
 	for (i = 0; i < r.nchunks; i++) {
 		const struct replay_chunk *c = &r.chunk[i];
 

@@ -11,9 +11,10 @@
 #      top of the pile, spread over the floor), charted as wall time
 #      against the distance from RK4's centroid;
 #   4. the tablecloth at 25^2 .. 200^2 nodes (10 mm spacing, box scaled as
-#      bench/scaling.sh does) with fast: wall per simulated second (targets
-#      5 s at 100^2 and 25 s at 200^2) and the log-log slope of time per
-#      step against nodes (target at most 1.1);
+#      bench/scaling.sh does) with fast, with the grid (as measured before
+#      the scenes shipped bvh) and with bvh (as they ship): wall per
+#      simulated second (targets 5 s at 100^2 and 25 s at 200^2) and the
+#      log-log slope of time per step against nodes (target at most 1.1);
 #   5. refinement at fixed size: the peers' 0.24 m table
 #      (../shared/reference/peers.md) at 25^2, 50^2, 100^2 over its first
 #      0.25 s: the growth of wall time per 4x nodes (target at most 4x),
@@ -156,31 +157,39 @@ fi
 # ---- 4: scaling ----
 if want 4; then
 	scsv=$results/fast-scaling.csv
-	echo "nodes,wall_per_sim_s,steps_per_s" >"$scsv"
-	for n in $sizes; do
-		scaled_tablecloth "$n" "simulation.integrator=fast" >"$tmp/scale-$n.scene"
-		: >"$tmp/scale-$n.w"
-		for r in $(seq 1 "$runs"); do
-			[ -t 2 ] && printf '\r  round %d: %d^2          ' "$r" "$n" >&2
-			"$drape" run --headless --until "$until_t" "$tmp/scale-$n.scene" >"$tmp/out" 2>"$tmp/err" ||
-				{ echo "$prog: $n^2: exit $?: $(head -n 1 "$tmp/err")" >&2; continue; }
-			wall_of <"$tmp/out" >>"$tmp/scale-$n.w"
+	echo "nodes,broad,wall_per_sim_s,steps_per_s" >"$scsv"
+	for broad in grid bvh; do
+		for n in $sizes; do
+			scaled_tablecloth "$n" "simulation.integrator=fast" "collision.broad=$broad" \
+				>"$tmp/scale-$n.scene"
+			: >"$tmp/scale-$n.w"
+			for r in $(seq 1 "$runs"); do
+				[ -t 2 ] && printf '\r  round %d: %d^2 %s          ' "$r" "$n" "$broad" >&2
+				"$drape" run --headless --until "$until_t" "$tmp/scale-$n.scene" >"$tmp/out" \
+					2>"$tmp/err" ||
+					{ echo "$prog: $n^2 $broad: exit $?: $(head -n 1 "$tmp/err")" >&2; continue; }
+				wall_of <"$tmp/out" >>"$tmp/scale-$n.w"
+			done
+			w=$(median <"$tmp/scale-$n.w")
+			awk -v n="$n" -v b="$broad" -v w="$w" -v t="$until_t" 'BEGIN {
+				if (w == "-") print n * n "," b ",-,-";
+				else printf "%d,%s,%.4g,%.4g\n", n * n, b, w / t, t / 0.01 / w }' >>"$scsv"
 		done
-		w=$(median <"$tmp/scale-$n.w")
-		awk -v n="$n" -v w="$w" -v t="$until_t" 'BEGIN { if (w == "-") print n * n ",-,-";
-			else printf "%d,%.4g,%.4g\n", n * n, w / t, t / 0.01 / w }' >>"$scsv"
 	done
 	[ -t 2 ] && printf '\r%60s\r' '' >&2
-	echo "tablecloth with fast at N x N nodes, first $until_t s, median of $runs:"
-	awk -F, 'NR > 1 { printf "  %7d nodes: %s s per simulated second\n", $1, $2 }' "$scsv"
-	awk -F, 'NR > 1 && $2 != "-" { x = log($1); y = log($2); n++; sx += x; sy += y; sxx += x * x; sxy += x * y
-			w[$1] = $2 }
-		END {
-			if (n >= 2) { b = (n * sxy - sx * sy) / (n * sxx - sx * sx)
-				printf "target: time per step linear in nodes, log-log slope at most 1.1: %.3f: %s\n", b, b <= 1.1 ? "met" : "missed" }
-			if (10000 in w) printf "target: 100^2 at most 5 s per simulated second: %s: %s\n", w[10000], w[10000] <= 5 ? "met" : "missed"
-			if (40000 in w) printf "target: 200^2 at most 25 s per simulated second: %s: %s\n", w[40000], w[40000] <= 25 ? "met" : "missed"
-		}' "$scsv"
+	for broad in grid bvh; do
+		echo "tablecloth with fast and $broad at N x N nodes, first $until_t s, median of $runs:"
+		awk -F, -v b="$broad" 'NR > 1 && $2 == b { printf "  %7d nodes: %s s per simulated second\n", $1, $3 }' "$scsv"
+		awk -F, -v b="$broad" 'NR > 1 && $2 == b && $3 != "-" {
+				x = log($1); y = log($3); n++; sx += x; sy += y; sxx += x * x; sxy += x * y
+				w[$1] = $3 }
+			END {
+				if (n >= 2) { s = (n * sxy - sx * sy) / (n * sxx - sx * sx)
+					printf "target: %s: time per step linear in nodes, log-log slope at most 1.1: %.3f: %s\n", b, s, s <= 1.1 ? "met" : "missed" }
+				if (10000 in w) printf "target: %s: 100^2 at most 5 s per simulated second: %s: %s\n", b, w[10000], w[10000] <= 5 ? "met" : "missed"
+				if (40000 in w) printf "target: %s: 200^2 at most 25 s per simulated second: %s: %s\n", b, w[40000], w[40000] <= 25 ? "met" : "missed"
+			}' "$scsv"
+	done
 	echo
 fi
 

@@ -33,6 +33,7 @@ struct stepper {
 	unsigned char *corrected;
 	struct lock_stats locks;
 	double step_wall, collide_wall;	/* s, over the committed steps */
+	const volatile sig_atomic_t *stop;	/* stepper_set_stop's flag, or NULL */
 };
 
 /* dy/dt = (v, a); held nodes follow their prescribed velocity, unforced. */
@@ -507,6 +508,13 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	if ((bad = find_blowup(st, st->y_next, f->why, sizeof f->why)) >= 0 ||
 	    (bad = find_torn(st, st->y_next, f->why, sizeof f->why)) >= 0)
 		return failed(st, f, STEP_BLOWUP, bad);
+	/* a signal since the long loops last looked (the checks above take a
+	 * third of a second on 590,000 nodes under the sanitizers): the step
+	 * is still under way, so it is given up as theirs would be */
+	if (st->stop != NULL && *st->stop) {
+		snprintf(f->why, sizeof f->why, "stopped by a signal");
+		return failed(st, f, STEP_STOPPED, -1);
+	}
 	/* 5. commit */
 	count_locks(st, &locks);
 	st->locks = locks;
@@ -524,6 +532,7 @@ stepper_step(struct stepper *st, struct step_failure *f)
 void
 stepper_set_stop(struct stepper *st, const volatile sig_atomic_t *flag)
 {
+	st->stop = flag;
 	collide_set_stop(&st->col, flag);
 	implicit_set_stop(&st->im, flag);
 	forces_set_stop(&st->net.fo, flag);

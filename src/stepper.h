@@ -66,9 +66,9 @@ struct stepper *stepper_new_progress(const struct scene *sc, const struct steppe
 void stepper_free(struct stepper *st);	/* NULL is fine */
 
 /* Polls *flag in the long loops of a step (the broad phase, the ccd passes,
- * the implicit solve): once it is set, the step is given up (STEP_STOPPED)
- * with the state at the last good step, so that a signal is honoured
- * within a step. NULL: never. */
+ * the implicit solve) and once more before the step is committed: once it
+ * is set, the step is given up (STEP_STOPPED) with the state at the last
+ * good step, so that a signal is honoured within a step. NULL: never. */
 void stepper_set_stop(struct stepper *st, const volatile sig_atomic_t *flag);
 
 /* One step. On a failure (described in *f) the state stays at the last

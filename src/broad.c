@@ -16,6 +16,12 @@ broad_uses_hash(enum broad_mode mode)
 	return mode == BROAD_SEED || mode == BROAD_GRID;
 }
 
+bool
+broad_boxes_exact(enum broad_mode mode)
+{
+	return mode == BROAD_BVH;
+}
+
 void
 broad_init(struct broad *b, enum broad_mode mode)
 {
@@ -1100,22 +1106,33 @@ bvh_sort(struct broad *b, const struct geom *g)
 	return 0;
 }
 
+/* Triangle t's box: its vertices' query boxes'. */
+static void
+tri_box(double *bx, const struct broad *b, const struct geom *g, int t)
+{
+	int k;
+
+	box_empty(bx);
+	for (k = 0; k < 3; k++) {
+		box_add(bx, b->qbox + 6 * g->tri[3 * t + k]);
+		box_add(bx, b->qbox + 6 * g->tri[3 * t + k] + 3);
+	}
+}
+
 /* Refits the trees to the vertices' boxes (qbox), children after parents:
  * from the last node back. */
 static void
 bvh_refit(struct broad *b, const struct geom *g)
 {
-	int i, k;
+	int i;
 
 	for (i = b->nnodes - 1; i >= 0; i--) {
 		struct bvh_node *n = &b->node[i];
 
-		box_empty(n->box);
 		if (leaf(n)) {
-			for (k = 0; k < 3; k++)
-				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k]),
-				box_add(n->box, b->qbox + 6 * g->tri[3 * n->tri + k] + 3);
+			tri_box(n->box, b, g, n->tri);
 		} else {
+			box_empty(n->box);
 			box_add(n->box, b->node[n->left].box);
 			box_add(n->box, b->node[n->left].box + 3);
 			box_add(n->box, b->node[n->right].box);
@@ -1214,24 +1231,16 @@ bvh_query(struct broad *b, const double *bx)
 	return (long)n;
 }
 
-/* Each triangle's box of this search (its vertices' query boxes). */
+/* Each triangle's box of this search. */
 static int
 fill_tri_boxes(struct broad *b, const struct geom *g)
 {
 	size_t t;
-	int k;
 
 	if (grow((void **)&b->tbox, &b->tboxcap, 6 * (g->ntri + 1), sizeof *b->tbox) != 0)
 		return -1;
-	for (t = 0; t < g->ntri; t++) {
-		double *bx = b->tbox + 6 * t;
-
-		box_empty(bx);
-		for (k = 0; k < 3; k++) {
-			box_add(bx, b->qbox + 6 * g->tri[3 * t + k]);
-			box_add(bx, b->qbox + 6 * g->tri[3 * t + k] + 3);
-		}
-	}
+	for (t = 0; t < g->ntri; t++)
+		tri_box(b->tbox + 6 * t, b, g, (int)t);
 	return 0;
 }
 
@@ -1407,10 +1416,23 @@ held_serves(const struct broad *b, const struct geom *g, const struct broad_want
 	    h->mesh_vertices == want->mesh_vertices;
 }
 
-/* A search's pairs from the held ones (sorted if *sorted): 0, 1 when too
- * many vertices left their boxes, -1 out of memory or stopped. */
+/* The search's pairs, sorted, from the held ones, with b->dirty marking
+ * the ndirty vertices out of their held boxes. */
 static int
-find_held(struct broad *b, const struct geom *g, const struct broad_want *want, bool *sorted)
+take_held(struct broad *b, const struct geom *g, const struct broad_want *want, int ndirty)
+{
+	b->nvt = b->nee = 0;
+	if (fill_tri_boxes(b, g) != 0 || held_clean(b, g) != 0)
+		return -1;
+	if (ndirty == 0)
+		return 0;	/* the held order is kept */
+	return held_dirty(b, g, want) != 0 ? -1 : bvh_sort(b, g);
+}
+
+/* A search's pairs from the held ones: 0, 1 when too many vertices left
+ * their boxes, -1 out of memory or stopped. */
+static int
+find_held(struct broad *b, const struct geom *g, const struct broad_want *want)
 {
 	int v, ndirty = 0;
 
@@ -1426,11 +1448,7 @@ find_held(struct broad *b, const struct geom *g, const struct broad_want *want, 
 	if (ndirty > g->nv / HELD_DIRTY_SHARE)
 		return 1;
 	b->held_uses++;
-	b->nvt = b->nee = 0;
-	if (fill_tri_boxes(b, g) != 0 || held_clean(b, g) != 0)
-		return -1;
-	*sorted = ndirty == 0;
-	return ndirty == 0 ? 0 : held_dirty(b, g, want);
+	return take_held(b, g, want, ndirty);
 }
 
 /* Each vertex's query box and each edge's box, from the vertices' boxes
@@ -1466,18 +1484,14 @@ fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want 
 }
 
 /* A traversal with every box widened by skin (if it pays, see HELD_SKIN),
- * whose pairs (sorted) and
- * boxes become the held ones. The tree keeps these boxes until the next
- * traversal: the held pairs' queries rely on it. 0: the search's pairs are
- * found (no skin), 1: they are to be taken from the held ones, -1 out of
- * memory or stopped. */
+ * whose pairs (sorted) and boxes become the held ones, and the search's
+ * pairs: 0, or -1 out of memory or stopped. The tree keeps these boxes
+ * until the next traversal: the held pairs' queries rely on it. */
 static int
 hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *want,
     double skin)
 {
 	struct broad_want all = *want;
-	void *p;
-	size_t cap;
 
 	all.near = 0;
 	if (!b->held_valid)
@@ -1497,34 +1511,27 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	    bvh_traverse(b, g, &all, b->cloth_root, b->mesh_root) != 0)
 		return -1;
 	if (bvh_sort(b, g) != 0 ||
+	    grow_pairs(b, (void **)&b->held_vt, &b->held_vtcap, b->nvt + 1, sizeof *b->vt) != 0 ||
+	    grow_pairs(b, (void **)&b->held_ee, &b->held_eecap, b->nee + 1, sizeof *b->ee) != 0 ||
 	    grow((void **)&b->held_box, &b->held_boxcap, 6 * (size_t)g->nv,
 	    sizeof *b->held_box) != 0)
 		return -1;
-	/* the found lists become the held ones, and the held ones' arrays
-	 * the next search's */
-	p = b->held_vt, cap = b->held_vtcap;
-	b->held_vt = b->vt, b->held_vtcap = b->vtcap, b->held_nvt = b->nvt;
-	b->vt = p, b->vtcap = cap, b->nvt = 0;
-	p = b->held_ee, cap = b->held_eecap;
-	b->held_ee = b->ee, b->held_eecap = b->eecap, b->held_nee = b->nee;
-	b->ee = p, b->eecap = cap, b->nee = 0;
+	memcpy(b->held_vt, b->vt, b->nvt * sizeof *b->vt);
+	memcpy(b->held_ee, b->ee, b->nee * sizeof *b->ee);
+	b->held_nvt = b->nvt;
+	b->held_nee = b->nee;
 	memcpy(b->held_box, b->allowed, 6 * (size_t)g->nv * sizeof *b->allowed);
 	b->held_want = all;
 	b->held_nv = g->nv;
 	b->held_valid = true;
-	if (skin > 0) {		/* the search's own pairs come from find_held */
-		fill_query_boxes(b, g, want, 0);
-		return 1;
-	}
-	/* without a skin they are the held ones */
-	if (grow_pairs(b, (void **)&b->vt, &b->vtcap, b->held_nvt + 1, sizeof *b->vt) != 0 ||
-	    grow_pairs(b, (void **)&b->ee, &b->eecap, b->held_nee + 1, sizeof *b->ee) != 0)
+	if (skin == 0)
+		return 0;	/* the pairs found are the search's */
+	/* the search's own from the skinned ones: none is out of its box */
+	fill_query_boxes(b, g, want, 0);
+	if (grow((void **)&b->dirty, &b->dirtycap, (size_t)g->nv, 1) != 0)
 		return -1;
-	memcpy(b->vt, b->held_vt, b->held_nvt * sizeof *b->vt);
-	memcpy(b->ee, b->held_ee, b->held_nee * sizeof *b->ee);
-	b->nvt = b->held_nvt;
-	b->nee = b->held_nee;
-	return 0;
+	memset(b->dirty, 0, (size_t)g->nv);
+	return take_held(b, g, want, 0);
 }
 
 /* The pairs that pass want's near test, in order. */
@@ -1549,7 +1556,6 @@ near_filter(struct broad *b, const struct broad_want *want)
 static int
 find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_want *want)
 {
-	bool sorted = true;
 	int v, k, rc = 1;
 	size_t e, t;
 
@@ -1578,15 +1584,10 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 	if (b->node == NULL)
 		return 0;
 	if (held_serves(b, g, want))
-		rc = find_held(b, g, want, &sorted);
-	if (rc == 1) {
-		sorted = true;
-		if ((rc = hold_traversal(b, g, want, HELD_SKIN * cell)) == 1) {
-			rc = find_held(b, g, want, &sorted);	/* none is out of its box */
-			b->held_uses = 0;	/* the later searches' */
-		}
-	}
-	if (rc != 0 || (!sorted && bvh_sort(b, g) != 0))
+		rc = find_held(b, g, want);
+	if (rc == 1)
+		rc = hold_traversal(b, g, want, HELD_SKIN * cell);
+	if (rc != 0)
 		return -1;
 	if (want->near > 0)
 		near_filter(b, want);

@@ -27,6 +27,11 @@ extern const char *const broad_mode_name[];	/* NULL-terminated, for the parser *
  * bvh finds grid's pairs with a tree of boxes instead (broad.c). */
 bool broad_uses_hash(enum broad_mode mode);
 
+/* 1 if the mode finds, for a broad_want without near, exactly the pairs
+ * whose boxes overlap (bvh; with near, those of them that pass it); the
+ * others find more (grid: whatever shares a cube; brute: all). */
+bool broad_boxes_exact(enum broad_mode mode);
+
 struct geom {
 	int nv, ncloth;		/* vertices; the first ncloth are cloth nodes */
 	const double *x0, *x1;

@@ -218,6 +218,36 @@ job_wait(struct replay_job *j)
 	j->threaded = false;
 }
 
+/* Back to the start of the provisional chunks, if any, to write over
+ * them; the file is cut after the next chunk (cut_if_due). */
+static int
+rewind_provisional(struct replay_writer *w, struct drape_err *err)
+{
+	if (w->prov_at == 0)
+		return 0;
+	errno = 0;
+	if (fflush(w->f) != 0 || fseeko(w->f, (off_t)w->prov_at, SEEK_SET) != 0)
+		return write_fail(w, err);
+	w->bytes = w->prov_at;
+	w->prov_at = 0;
+	w->cut_due = true;
+	return 0;
+}
+
+/* What is left of longer provisional chunks after the file's position
+ * goes. */
+static int
+cut_if_due(struct replay_writer *w, struct drape_err *err)
+{
+	if (!w->cut_due)
+		return 0;
+	w->cut_due = false;
+	errno = 0;
+	if (fflush(w->f) != 0 || ftruncate(fileno(w->f), (off_t)w->bytes) != 0)
+		return write_fail(w, err);
+	return 0;
+}
+
 /* The oldest chunk in flight, deflated, appended and flushed to the file. */
 static int
 job_finish_one(struct replay_writer *w, struct drape_err *err)
@@ -240,14 +270,8 @@ job_finish_one(struct replay_writer *w, struct drape_err *err)
 		return -1;
 	}
 	/* a chunk of the run's data goes over the provisional ones */
-	if (!j->provisional && w->prov_at > 0) {
-		errno = 0;
-		if (fflush(w->f) != 0 || fseeko(w->f, (off_t)w->prov_at, SEEK_SET) != 0)
-			return write_fail(w, err);
-		w->bytes = w->prov_at;
-		w->prov_at = 0;
-		w->cut_due = true;
-	}
+	if (!j->provisional && rewind_provisional(w, err) != 0)
+		return -1;
 	if (j->key >= 0)
 		w->koff[j->key] = w->bytes;
 	memcpy(h.magic, chunk_magic, 4);
@@ -263,13 +287,7 @@ job_finish_one(struct replay_writer *w, struct drape_err *err)
 	errno = 0;
 	if (fflush(w->f) != 0)
 		return write_fail(w, err);
-	/* what is left of longer provisional chunks goes */
-	if (w->cut_due) {
-		w->cut_due = false;
-		if (ftruncate(fileno(w->f), (off_t)w->bytes) != 0)
-			return write_fail(w, err);
-	}
-	return 0;
+	return cut_if_due(w, err);
 }
 
 /* Every chunk in flight in the file (or, after an error, given up). */
@@ -838,32 +856,20 @@ replay_writer_flush(struct replay_writer *w, struct drape_err *err)
 static int
 flush_if_due(struct replay_writer *w, struct drape_err *err)
 {
-	uint64_t at;
-
 	if (w->clock == NULL || w->nframes + w->nsteps == 0 ||
 	    !(w->clock() - w->last_flush >= w->flush_every))
 		return 0;
 	w->last_flush = w->clock();
-	if (job_finish(w, err) != 0)
-		return -1;
 	/* over the last provisional chunks, if the run's chunks have not
 	 * gone over them yet */
-	at = w->prov_at > 0 ? w->prov_at : w->bytes;
-	errno = 0;
-	if (w->prov_at > 0 && (fflush(w->f) != 0 || fseeko(w->f, (off_t)at, SEEK_SET) != 0))
-		return write_fail(w, err);
-	w->bytes = at;
-	w->prov_at = at;
+	if (job_finish(w, err) != 0 || rewind_provisional(w, err) != 0)
+		return -1;
+	w->prov_at = w->bytes;
 	w->cut_due = true;
 	if (flush_frames(w, true, err) != 0 || flush_steps(w, true, err) != 0 ||
 	    job_finish(w, err) != 0)
 		return -1;
-	if (w->cut_due) {	/* no provisional chunk wrote it */
-		w->cut_due = false;
-		if (ftruncate(fileno(w->f), (off_t)w->bytes) != 0)
-			return write_fail(w, err);
-	}
-	return 0;
+	return cut_if_due(w, err);	/* no provisional chunk did */
 }
 
 int

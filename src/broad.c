@@ -31,6 +31,8 @@ broad_init(struct broad *b, enum broad_mode mode)
 	hash_init(&b->hash_edges);
 }
 
+static void bvh_drop(struct broad *b);
+
 void
 broad_free(struct broad *b)
 {
@@ -43,12 +45,7 @@ broad_free(struct broad *b)
 	free(b->allowed);
 	free(b->big);
 	free(b->is_big);
-	free(b->node);
-	free(b->rep_vertex);
-	free(b->rep_edge);
-	free(b->rep_start);
-	free(b->rep_list);
-	free(b->rep_nv);
+	bvh_drop(b);
 	free(b->stack);
 	free(b->qbox);
 	free(b->ebox);
@@ -62,6 +59,10 @@ broad_free(struct broad *b)
 	free(b->found);
 	free(b->dlist);
 	free(b->tbox);
+	free(b->tdef);
+	free(b->nsum);
+	free(b->cull);
+	free(b->held_cull);
 	memset(b, 0, sizeof *b);
 }
 
@@ -789,6 +790,7 @@ bvh_build(struct broad *b, const struct geom *g, int *tri, double *key, int lo, 
 
 	b->node[at].left = b->node[at].right = -1;
 	b->node[at].tri = tri[lo];
+	b->node[at].patch = false;
 	if (hi - lo == 1)
 		return at;
 	box_empty(bx);
@@ -852,6 +854,160 @@ bvh_build(struct broad *b, const struct geom *g, int *tri, double *key, int lo, 
 	return at;
 }
 
+/* The triangles of the squares [i0, i1) x [j0, j1) of the cloth's grid
+ * (sq: per square its two triangles, -1 where missing). */
+static int
+grid_count(const int *sq, int su, int i0, int i1, int j0, int j1)
+{
+	int i, j, n = 0;
+
+	for (j = j0; j < j1; j++)
+		for (i = i0; i < i1; i++)
+			n += (sq[2 * (j * su + i)] >= 0) + (sq[2 * (j * su + i) + 1] >= 0);
+	return n;
+}
+
+static int
+grid_leaf(struct broad *b, int t, int *next)
+{
+	int at = (*next)++;
+
+	b->node[at].left = b->node[at].right = -1;
+	b->node[at].tri = t;
+	b->node[at].patch = false;
+	return at;
+}
+
+/* The cloth's tree over its grid rather than over space: each node a
+ * rectangle of squares, halved across its longer side, so that a node's
+ * triangles are a rectangle of the cloth (a patch, if no square of it is
+ * missing) whose flatness can be judged (below). On the cloth at rest it
+ * is the spatial tree's shape; the pairs are the same either way. Returns
+ * the subtree's root, or -1 if the rectangle holds no triangle. */
+static int
+bvh_build_grid(struct broad *b, const int *sq, int su, int i0, int i1, int j0, int j1,
+    int *next)
+{
+	int n = grid_count(sq, su, i0, i1, j0, j1), at, m;
+
+	if (n == 0)
+		return -1;
+	if (n == 1) {
+		int i, j;
+
+		for (j = j0; j < j1; j++)
+			for (i = i0; i < i1; i++)
+				for (m = 0; m < 2; m++)
+					if (sq[2 * (j * su + i) + m] >= 0)
+						return grid_leaf(b, sq[2 * (j * su + i) + m], next);
+	}
+	if (i1 - i0 == 1 && j1 - j0 == 1) {	/* one square, two triangles */
+		at = (*next)++;
+		b->node[at].left = grid_leaf(b, sq[2 * (j0 * su + i0)], next);
+		b->node[at].right = grid_leaf(b, sq[2 * (j0 * su + i0) + 1], next);
+	} else {
+		int l0 = i0, l1 = i1, k0 = j0, k1 = j1, r0 = i0, r1 = i1, h0 = j0, h1 = j1;
+
+		if (i1 - i0 >= j1 - j0)
+			l1 = r0 = i0 + (i1 - i0) / 2;
+		else
+			k1 = h0 = j0 + (j1 - j0) / 2;
+		if (grid_count(sq, su, l0, l1, k0, k1) == 0)
+			return bvh_build_grid(b, sq, su, r0, r1, h0, h1, next);
+		if (grid_count(sq, su, r0, r1, h0, h1) == 0)
+			return bvh_build_grid(b, sq, su, l0, l1, k0, k1, next);
+		at = (*next)++;
+		b->node[at].left = bvh_build_grid(b, sq, su, l0, l1, k0, k1, next);
+		b->node[at].right = bvh_build_grid(b, sq, su, r0, r1, h0, h1, next);
+	}
+	b->node[at].tri = -1;
+	b->node[at].patch = n == 2 * (i1 - i0) * (j1 - j0);
+	return at;
+}
+
+/* Each node's span of leaf_tri, for the tree of nodes [root, end):
+ * children follow their parent, the left subtree before the right, so
+ * one pass back gives the counts and one forward the firsts. */
+static void
+bvh_spans(struct broad *b, int root, int end, int first)
+{
+	int i;
+
+	if (root < 0)
+		return;
+	for (i = end - 1; i >= root; i--) {
+		struct bvh_node *n = &b->node[i];
+
+		n->count = n->left < 0 ? 1 : b->node[n->left].count + b->node[n->right].count;
+	}
+	b->node[root].first = first;
+	for (i = root; i < end; i++) {
+		struct bvh_node *n = &b->node[i];
+
+		if (n->left < 0) {
+			b->leaf_tri[n->first] = n->tri;
+			continue;
+		}
+		b->node[n->left].first = n->first;
+		b->node[n->right].first = n->first + b->node[n->left].count;
+	}
+}
+
+/* Per cloth triangle the inverse of its rest map [uv1 - uv0, uv2 - uv0]
+ * (so that the deformation F = [x1 - x0, x2 - x0] times it), or NULL
+ * for a cloth without a grid. */
+static int
+bvh_rest_maps(struct broad *b, const struct geom *g, size_t ncloth_tri)
+{
+	size_t t;
+
+	if (g->tri_square == NULL || g->uv == NULL || ncloth_tri == 0)
+		return 0;
+	if ((b->dminv = malloc(4 * ncloth_tri * sizeof *b->dminv)) == NULL ||
+	    (b->tri_cull = malloc(ncloth_tri * sizeof *b->tri_cull)) == NULL ||
+	    (b->held_mark = calloc(2 * g->ntri, 1)) == NULL ||
+	    (b->witness = calloc(2 * g->ntri, sizeof *b->witness)) == NULL)
+		return -1;
+	for (t = 0; t < ncloth_tri; t++) {
+		const int *n = g->tri + 3 * t;
+		double a = g->uv[2 * n[1]] - g->uv[2 * n[0]], c = g->uv[2 * n[2]] - g->uv[2 * n[0]];
+		double bb = g->uv[2 * n[1] + 1] - g->uv[2 * n[0] + 1];
+		double d = g->uv[2 * n[2] + 1] - g->uv[2 * n[0] + 1], det = a * d - c * bb;
+		double *m = b->dminv + 4 * t;
+
+		if (!(fabs(det) > 0))
+			return -1;
+		m[0] = d / det;
+		m[1] = -c / det;
+		m[2] = -bb / det;
+		m[3] = a / det;
+	}
+	return 0;
+}
+
+/* Frees the trees and what was built with them. */
+static void
+bvh_drop(struct broad *b)
+{
+	free(b->node);
+	free(b->rep_vertex);
+	free(b->rep_edge);
+	free(b->rep_start);
+	free(b->rep_list);
+	free(b->rep_nv);
+	free(b->leaf_tri);
+	free(b->dminv);
+	free(b->tri_cull);
+	free(b->held_mark);
+	free(b->witness);
+	b->node = NULL;
+	b->rep_vertex = b->rep_edge = b->rep_start = b->rep_list = NULL;
+	b->rep_nv = NULL;
+	b->leaf_tri = b->tri_cull = b->witness = NULL;
+	b->dminv = NULL;
+	b->held_mark = NULL;
+}
+
 /* The trees and the representatives, for geometry g; once. */
 static int
 bvh_prepare(struct broad *b, const struct geom *g)
@@ -863,15 +1019,8 @@ bvh_prepare(struct broad *b, const struct geom *g)
 	if (b->node != NULL && b->bvh_nv == g->nv && b->bvh_ntri == g->ntri)
 		return 0;
 	b->held_valid = false;	/* their queries need the tree they were found in */
-	free(b->node);
-	free(b->rep_vertex);
-	free(b->rep_edge);
-	free(b->rep_start);
-	free(b->rep_list);
-	free(b->rep_nv);
-	b->node = NULL;
-	b->rep_vertex = b->rep_edge = b->rep_start = b->rep_list = NULL;
-	b->rep_nv = NULL;
+	b->ncull = b->held_ncull = 0;
+	bvh_drop(b);
 	if (g->ntri == 0 || g->ntri > (size_t)INT_MAX / 2)
 		return g->ntri == 0 ? 0 : -1;
 	b->node = malloc((2 * g->ntri) * sizeof *b->node);
@@ -880,9 +1029,10 @@ bvh_prepare(struct broad *b, const struct geom *g)
 	b->rep_start = calloc(g->ntri + 1, sizeof *b->rep_start);
 	b->rep_list = malloc(((size_t)g->nv + g->nedges + 1) * sizeof *b->rep_list);
 	b->rep_nv = calloc(g->ntri, sizeof *b->rep_nv);
-	tri = malloc(g->ntri * sizeof *tri);
+	tri = malloc((g->ntri + 2 * (size_t)g->squares_u * g->squares_v) * sizeof *tri);
 	key = malloc(g->ntri * sizeof *key);
-	if (b->node == NULL || b->rep_vertex == NULL || b->rep_edge == NULL ||
+	b->leaf_tri = malloc(g->ntri * sizeof *b->leaf_tri);
+	if (b->node == NULL || b->rep_vertex == NULL || b->rep_edge == NULL || b->leaf_tri == NULL ||
 	    b->rep_start == NULL || b->rep_list == NULL ||
 	    b->rep_nv == NULL || tri == NULL || key == NULL)
 		goto fail;
@@ -891,11 +1041,28 @@ bvh_prepare(struct broad *b, const struct geom *g)
 		ncloth_tri += g->tri[3 * t] < g->ncloth;	/* cloth triangles come first */
 	}
 	b->cloth_root = b->mesh_root = -1;
-	if (ncloth_tri > 0)
+	if (ncloth_tri > 0 && g->tri_square != NULL && g->uv != NULL) {
+		/* per square its two triangles, after the triangles' list */
+		int *sq = tri + g->ntri, su = g->squares_u;
+
+		for (t = 0; t < 2 * (size_t)su * g->squares_v; t++)
+			sq[t] = -1;
+		for (t = 0; t < ncloth_tri; t++) {
+			int *slot = sq + 2 * g->tri_square[t];
+
+			slot[slot[0] >= 0] = (int)t;
+		}
+		b->cloth_root = bvh_build_grid(b, sq, su, 0, su, 0, g->squares_v, &next);
+		if (bvh_rest_maps(b, g, ncloth_tri) != 0)
+			goto fail;
+	} else if (ncloth_tri > 0) {
 		b->cloth_root = bvh_build(b, g, tri, key, 0, (int)ncloth_tri, &next);
+	}
 	if (ncloth_tri < g->ntri)
 		b->mesh_root = bvh_build(b, g, tri, key, (int)ncloth_tri, (int)g->ntri, &next);
 	b->nnodes = next;
+	bvh_spans(b, b->cloth_root, b->mesh_root >= 0 ? b->mesh_root : next, 0);
+	bvh_spans(b, b->mesh_root, next, (int)ncloth_tri);
 	for (v = 0; v < g->nv; v++)
 		b->rep_vertex[v] = g->vtri_start[v] < g->vtri_start[v + 1] ?
 		    g->vtri[g->vtri_start[v]] : -1;
@@ -932,8 +1099,7 @@ bvh_prepare(struct broad *b, const struct geom *g)
 fail:
 	free(tri);
 	free(key);
-	free(b->node);
-	b->node = NULL;
+	bvh_drop(b);
 	return -1;
 }
 
@@ -995,6 +1161,204 @@ bvh_leaves(struct broad *b, const struct geom *g, const struct broad_want *want,
 	return 0;
 }
 
+/*
+ * ---- flat patches ----
+ *
+ * A cloth's neighbours in its plane overlap at every level of the tree,
+ * whatever the motion, so a traversal of a flat cloth against itself
+ * finds thousands of pairs the narrow phase then rules out one by one
+ * (a falling tablecloth: some 3,900 a step, 85 % of its instructions).
+ * A patch that stays flat cannot touch itself, and that can be proven
+ * for the patch at once. Let f map the patch's rectangle on the cloth at
+ * rest (convex) to space, linear on each triangle with deformation F
+ * (3 x 2), and Q (2 x 3) project onto a plane. If the symmetric part of
+ * Q F has its eigenvalues at least sigma > 0 on every triangle, then for
+ * any two points p != q of the rectangle, integrating along the segment
+ * between them (inside the rectangle, since it is convex),
+ *   (Q f(q) - Q f(p)) . (q - p) >= sigma |q - p|^2,
+ * so |f(q) - f(p)| >= sigma |q - p|: the patch is one sheet over the plane,
+ * no two of its points meet, and two primitives that share no vertex
+ * (uv_gap apart at rest) are at least sigma uv_gap apart. (This is the
+ * contour condition of Volino & Magnenat-Thalmann 1994 made to hold by
+ * construction: a rectangle's image under such a map cannot fold over.)
+ * Over a step each vertex moves linearly, so F is linear in time, and the
+ * matrices whose symmetric part is at least sigma form a convex set:
+ * checking both ends of the step proves it throughout.
+ *
+ * What the searches need of a patch they leave out:
+ *   - the check (exact ccd, no margin): sigma > 0 at both ends, so no
+ *     pair of the patch can meet in the step;
+ *   - a step's contacts (near > 0): no pair of the patch may be kept
+ *     (contacts.h: separation at the start less near_motion times the
+ *     relative motion of its vertices under near). The separation is at
+ *     least sigma_0 d for primitives d apart at rest (d >= uv_gap), and
+ *     the relative motion at most L (d + 2 uv_diam), L the largest norm of
+ *     the motion's gradient x1 - x0 on the patch's triangles; so the patch
+ *     is out of reach if sigma_0 > near_motion L and
+ *     (sigma_0 - near_motion L) uv_gap >= near + near_motion L 2 uv_diam
+ *     (the first follows from the second: the worst d is uv_gap).
+ * The projection is the patch's mean directions along u and along v,
+ * made orthonormal; any fixed one is sound. A patch left out by one
+ * search is judged again by every later one that takes the held pairs,
+ * and by broad_recheck when the check moves its vertices.
+ */
+
+/* Cloth triangle t's deformation at x0 (k = 0) or x1 (k = 1), into tdef. */
+static void
+tri_deform(struct broad *b, const struct geom *g, int t, int k)
+{
+	const double *x = k ? g->x1 : g->x0, *m = b->dminv + 4 * t;
+	const int *v = g->tri + 3 * t;
+	double *f = b->tdef + 12 * t + 6 * k;
+	int d;
+
+	for (d = 0; d < 3; d++) {
+		double e1 = x[3 * v[1] + d] - x[3 * v[0] + d];
+		double e2 = x[3 * v[2] + d] - x[3 * v[0] + d];
+
+		f[d] = e1 * m[0] + e2 * m[2];
+		f[3 + d] = e1 * m[1] + e2 * m[3];
+	}
+}
+
+/* Each node's F at x0 and x1 summed over its triangles, for the nodes
+ * [x, end) of the cloth's tree, children first. */
+static void
+node_sums(struct broad *b, int x, int end)
+{
+	int i, k;
+
+	for (i = end - 1; i >= x; i--) {
+		const struct bvh_node *n = &b->node[i];
+		double *s = b->nsum + 6 * i;
+
+		if (leaf(n)) {
+			const double *f = b->tdef + 12 * n->tri;
+
+			for (k = 0; k < 6; k++)
+				s[k] = f[k] + f[6 + k];
+		} else {
+			for (k = 0; k < 6; k++)
+				s[k] = b->nsum[6 * n->left + k] + b->nsum[6 * n->right + k];
+		}
+	}
+}
+
+/* Each cloth triangle's deformations, and the least eigenvalue taken as
+ * positive: far above the roundings of F's entries (a few units in the
+ * last place of the coordinates, over the spacing). */
+static int
+cull_prepare(struct broad *b, const struct geom *g, const struct broad_want *want)
+{
+	int t, n, k;
+	double big = 0;
+
+	b->cull_on = false;
+	b->ncull = 0;
+	if (b->dminv == NULL || b->cloth_root < 0 || !want->self || !(g->uv_gap > 0))
+		return 0;
+	n = b->node[b->cloth_root].count;
+	if (grow((void **)&b->tdef, &b->tdefcap, 12 * (size_t)n, sizeof *b->tdef) != 0 ||
+	    grow((void **)&b->nsum, &b->nsumcap, 6 * (size_t)(2 * n), sizeof *b->nsum) != 0)
+		return -1;
+	for (t = 0; t < n; t++) {
+		tri_deform(b, g, t, 0);
+		tri_deform(b, g, t, 1);
+	}
+	node_sums(b, b->cloth_root, b->cloth_root + 2 * n - 1);
+	for (k = 0; k < 3 * g->ncloth; k++)
+		big = fmax(big, fmax(fabs(g->x0[k]), fabs(g->x1[k])));
+	b->cull_on = true;
+	b->cull_want = *want;
+	b->cull_tol = 1e-6 + 1e-12 * big / g->uv_gap;
+	return 0;
+}
+
+/* The least eigenvalue of the symmetric part of Q F, Q's rows q1, q2. */
+static double
+least_eigen(const double *q1, const double *q2, const double *f)
+{
+	double a = q1[0] * f[0] + q1[1] * f[1] + q1[2] * f[2];
+	double c = q2[0] * f[3] + q2[1] * f[4] + q2[2] * f[5];
+	double s = (q1[0] * f[3] + q1[1] * f[4] + q1[2] * f[5] +
+	    q2[0] * f[0] + q2[1] * f[1] + q2[2] * f[2]) / 2;
+
+	return (a + c) / 2 - sqrt((a - c) * (a - c) / 4 + s * s);
+}
+
+/* Whether patch p is flat enough for the search cull_want (see above).
+ * For a step's contacts the condition reads, with c = near_motion,
+ *   (sigma_0 - tol) uv_gap - near >= c L (uv_gap + 2 uv_diam),
+ * sigma_0 the least eigenvalue and L the largest gradient of the motion
+ * over the patch; so each triangle alone must pass it, and a patch that
+ * failed usually fails again at the same triangle (a fold lasts, a flap
+ * goes on flapping), which is tried first: a failing patch then costs one
+ * triangle, not a scan up to it. The order changes nothing but the cost. */
+static int
+patch_flat(struct broad *b, const struct geom *g, const struct bvh_node *p)
+{
+	const struct broad_want *want = &b->cull_want;
+	int x = (int)(p - b->node), i, k, ends = want->near > 0 ? 1 : 2, w = b->witness[x];
+	const double *s = b->nsum + 6 * x;
+	double q1[3], q2[3], len, d, sigma = INFINITY, lip2 = 0;
+	double span = want->near_motion * (g->uv_gap + 2 * g->uv_diam);
+
+	len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+	if (!(len > 0))
+		return 0;
+	for (k = 0; k < 3; k++)
+		q1[k] = s[k] / len;
+	d = s[3] * q1[0] + s[4] * q1[1] + s[5] * q1[2];
+	for (k = 0; k < 3; k++)
+		q2[k] = s[3 + k] - d * q1[k];
+	len = sqrt(q2[0] * q2[0] + q2[1] * q2[1] + q2[2] * q2[2]);
+	if (!(len > 0))
+		return 0;
+	for (k = 0; k < 3; k++)
+		q2[k] /= len;
+	for (i = p->first - 1; i < p->first + p->count; i++) {
+		int at = i < p->first ? w : i;
+		const double *f;
+		double st = INFINITY, gg = 0, room;
+
+		if (at < p->first || at >= p->first + p->count)
+			continue;	/* no witness in this patch */
+		f = b->tdef + 12 * b->leaf_tri[at];
+		for (k = 0; k < ends; k++)
+			st = fmin(st, least_eigen(q1, q2, f + 6 * k));
+		st -= b->cull_tol;
+		if (ends == 1) {
+			for (k = 0; k < 6; k++)
+				gg += (f[6 + k] - f[k]) * (f[6 + k] - f[k]);
+			/* this triangle's sigma and L alone */
+			room = (st * g->uv_gap - want->near) / ((1 + 1e-9) * span);
+			if (!(room > 0 && gg <= room * room)) {
+				b->witness[x] = at;
+				return 0;
+			}
+		} else if (!(st > 0)) {
+			b->witness[x] = at;
+			return 0;
+		}
+		sigma = fmin(sigma, st);
+		lip2 = fmax(lip2, gg);
+	}
+	if (ends == 2)
+		return 1;
+	return (sigma * g->uv_gap - want->near) >=
+	    (1 + 1e-9) * span * sqrt(lip2) + 1e-300;
+}
+
+static int
+push_cull(struct broad *b, int x)
+{
+	if (b->ncull == b->cullcap &&
+	    grow((void **)&b->cull, &b->cullcap, b->ncull + 1, sizeof *b->cull) != 0)
+		return -1;
+	b->cull[b->ncull++] = x;
+	return 0;
+}
+
 /* Every pair of leaves, one under x and one under y (x == y: a subtree
  * against itself, each pair of distinct leaves once), whose boxes overlap.
  * The stack of node pairs grows before each pop's at most three pushes. */
@@ -1024,20 +1388,24 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 		q = &b->node[y];
 		if ((++visits & 4095) == 0 && stop_asked(b))
 			return -1;
-		/* A subtree against itself: every pair of its leaves. No normal
-		 * cone prunes it: a patch whose normals stay within a cone
-		 * cannot touch itself only if it is one connected piece whose
-		 * contour does not overlap itself (Volino & Magnenat-Thalmann
-		 * 1994), and a subtree of this spatial hierarchy is neither: the
-		 * layers of a pile face the same way, lie a thickness apart, and
-		 * fall in one subtree. Pruning there missed the contacts
-		 * between them (the peers' table under the fast path tore at
-		 * 0.48 s after 4 pairs crossed at 0.21 s), and a cone made from
-		 * the step's predicted motion does not hold the check's
-		 * corrected paths anyway. */
+		/* A subtree against itself: every pair of its leaves, unless it
+		 * is a flat patch (above). A normal cone alone does not prune
+		 * it: a patch whose normals stay within a cone cannot touch
+		 * itself only if its contour does not overlap itself (Volino &
+		 * Magnenat-Thalmann 1994), and the layers of a pile face the
+		 * same way a thickness apart (a cone cull missed them: the
+		 * peers' table tore at 0.48 s after 4 pairs crossed at 0.21 s).
+		 * The flat test proves the contour's part by construction, on
+		 * both ends of the step, and the check's corrections are judged
+		 * again (broad_recheck). */
 		if (x == y) {
 			if (leaf(p))
 				continue;	/* one triangle: nothing */
+			if (b->cull_on && p->patch && patch_flat(b, g, p)) {
+				if (push_cull(b, x) != 0)
+					return -1;
+				continue;
+			}
 			st[top++] = p->left;
 			st[top++] = p->left;
 			st[top++] = p->right;
@@ -1049,7 +1417,8 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 		if (!box_overlap(p->box, q->box))
 			continue;
 		if (leaf(p) && leaf(q)) {
-			if (bvh_leaves(b, g, want, p->tri, p->box, q->tri, q->box) != 0)
+			if (bvh_leaves(b, g, want, p->tri, b->leaf_tbox ? b->tbox + 6 * p->tri : p->box,
+			    q->tri, b->leaf_tbox ? b->tbox + 6 * q->tri : q->box) != 0)
 				return -1;
 		} else if (leaf(q) || (!leaf(p) && p->size >= q->size)) {
 			st[top++] = p->left;
@@ -1159,9 +1528,12 @@ bvh_refit(struct broad *b, const struct geom *g)
  * query of the tree a dirty vertex, triangle and edge, whose boxes are
  * still the held ones (they hold every clean vertex's box), and the pairs
  * among dirty ones by testing each against each. When more than one
- * vertex in HELD_DIRTY_SHARE is dirty, a traversal again. The pairs are
- * exactly a traversal's of the search's own boxes (the same test on every
- * pair, and sorted): only the cost differs.
+ * vertex in HELD_DIRTY_SHARE is dirty, a traversal again. The flat
+ * patches are judged again for the search, top down as a traversal
+ * judges them: the held pairs inside those left out are dropped, and a
+ * patch the held traversal left out that is no longer flat is traversed.
+ * The pairs are exactly a traversal's of the search's own boxes (the same
+ * test on every pair, and sorted): only the cost differs.
  */
 
 /* The skin, as a fraction of the cube edge L_ce (the grid's is 0.1). It
@@ -1258,6 +1630,16 @@ edge_dirty(const struct broad *b, const struct geom *g, int e)
 	return b->dirty[g->edge[2 * e]] | b->dirty[g->edge[2 * e + 1]];
 }
 
+/* Whether a traversal leaves out the pairs of triangles ta and tb (a
+ * vertex's or an edge's, its representative): both in one flat patch. */
+static int
+culled(const struct broad *b, int ta, int tb)
+{
+	return b->ncull > 0 && ta >= 0 && tb >= 0 && ta < b->node[b->cloth_root].count &&
+	    tb < b->node[b->cloth_root].count && b->tri_cull[ta] >= 0 &&
+	    b->tri_cull[ta] == b->tri_cull[tb];
+}
+
 /* The held pairs of clean vertices, by this search's box test. */
 static int
 held_clean(struct broad *b, const struct geom *g)
@@ -1268,7 +1650,7 @@ held_clean(struct broad *b, const struct geom *g)
 		int v = b->held_vt[i].v, t = b->held_vt[i].t;
 
 		if (b->dirty[v] || tri_dirty(b, g, t) ||
-		    !box_overlap(b->qbox + 6 * v, b->tbox + 6 * t))
+		    !box_overlap(b->qbox + 6 * v, b->tbox + 6 * t) || culled(b, b->rep_vertex[v], t))
 			continue;
 		if (push_vt(b, v, t) != 0)
 			return -1;
@@ -1277,7 +1659,8 @@ held_clean(struct broad *b, const struct geom *g)
 		int e = b->held_ee[i].a, f = b->held_ee[i].b;
 
 		if (edge_dirty(b, g, e) || edge_dirty(b, g, f) ||
-		    !box_overlap(b->ebox + 6 * e, b->ebox + 6 * f))
+		    !box_overlap(b->ebox + 6 * e, b->ebox + 6 * f) ||
+		    culled(b, b->rep_edge[e], b->rep_edge[f]))
 			continue;
 		if (push_ee(b, e, f) != 0)
 			return -1;
@@ -1296,7 +1679,8 @@ held_query_vertex(struct broad *b, const struct geom *g, const struct broad_want
 		int t = b->found[k];
 
 		if (tri_dirty(b, g, t) || tri_has(g, t, v) || vt_static(g, v, t) ||
-		    !vt_wanted(g, want, v, t) || !box_overlap(b->qbox + 6 * v, b->tbox + 6 * t))
+		    !vt_wanted(g, want, v, t) || !box_overlap(b->qbox + 6 * v, b->tbox + 6 * t) ||
+		    culled(b, b->rep_vertex[v], t))
 			continue;
 		if (push_vt(b, v, t) != 0)
 			return -1;
@@ -1318,7 +1702,8 @@ held_query_triangle(struct broad *b, const struct geom *g, const struct broad_wa
 			int u = l[j];
 
 			if (b->dirty[u] || tri_has(g, t, u) || vt_static(g, u, t) ||
-			    !vt_wanted(g, want, u, t) || !box_overlap(b->qbox + 6 * u, tb))
+			    !vt_wanted(g, want, u, t) || !box_overlap(b->qbox + 6 * u, tb) ||
+			    culled(b, b->rep_vertex[u], t))
 				continue;
 			if (push_vt(b, u, t) != 0)
 				return -1;
@@ -1341,7 +1726,7 @@ held_query_edge(struct broad *b, const struct geom *g, const struct broad_want *
 			int f = b->rep_list[j];
 
 			if (edge_dirty(b, g, f) || ee_skip(g, e, f) || !ee_wanted(g, want, e, f) ||
-			    !box_overlap(eb, b->ebox + 6 * f))
+			    !box_overlap(eb, b->ebox + 6 * f) || culled(b, b->rep_edge[e], b->rep_edge[f]))
 				continue;
 			if (push_ee(b, e, f) != 0)
 				return -1;
@@ -1382,7 +1767,7 @@ held_dirty(struct broad *b, const struct geom *g, const struct broad_want *want)
 			if (!tri_has(g, dt[j], dv[i]) && !vt_static(g, dv[i], dt[j]) &&
 			    vt_wanted(g, want, dv[i], dt[j]) &&
 			    box_overlap(b->qbox + 6 * dv[i], b->tbox + 6 * (size_t)dt[j]) &&
-			    push_vt(b, dv[i], dt[j]) != 0)
+			    !culled(b, b->rep_vertex[dv[i]], dt[j]) && push_vt(b, dv[i], dt[j]) != 0)
 				return -1;
 	}
 	for (j = 0; j < nt; j++) {
@@ -1399,6 +1784,7 @@ held_dirty(struct broad *b, const struct geom *g, const struct broad_want *want)
 		for (j = i + 1; j < ne; j++)
 			if (!ee_skip(g, de[i], de[j]) && ee_wanted(g, want, de[i], de[j]) &&
 			    box_overlap(b->ebox + 6 * (size_t)de[i], b->ebox + 6 * (size_t)de[j]) &&
+			    !culled(b, b->rep_edge[de[i]], b->rep_edge[de[j]]) &&
 			    push_ee(b, de[i], de[j]) != 0)
 				return -1;
 	}
@@ -1412,21 +1798,105 @@ held_serves(const struct broad *b, const struct geom *g, const struct broad_want
 	const struct broad_want *h = &b->held_want;
 
 	return b->held_valid && b->held_nv == g->nv && !want->neighbour_paths &&
+	    (b->held_ncull == 0 || b->cull_on) &&
 	    !h->neighbour_paths && h->self == want->self && h->edges == want->edges &&
 	    h->mesh_vertices == want->mesh_vertices;
 }
 
+/* Drops repeats from the sorted lists: a patch given back may hold pairs
+ * a dirty vertex's query found already. */
+static void
+unique_pairs(struct broad *b)
+{
+	size_t i, k;
+
+	for (i = k = 0; i < b->nvt; i++)
+		if (k == 0 || b->vt[i].v != b->vt[k - 1].v || b->vt[i].t != b->vt[k - 1].t)
+			b->vt[k++] = b->vt[i];
+	b->nvt = k;
+	for (i = k = 0; i < b->nee; i++)
+		if (k == 0 || b->ee[i].a != b->ee[k - 1].a || b->ee[i].b != b->ee[k - 1].b)
+			b->ee[k++] = b->ee[i];
+	b->nee = k;
+}
+
+/* Patch x judged for this search: left out again if still flat (1), or
+ * its pairs found, with the triangles' boxes from tbox (the tree's may be
+ * older than this search's), 0; -1 out of memory or stopped. */
+static int
+judge_patch(struct broad *b, const struct geom *g, const struct broad_want *want, int x)
+{
+	bool saved = b->leaf_tbox;
+	int rc;
+
+	if (patch_flat(b, g, &b->node[x]))
+		return push_cull(b, x) != 0 ? -1 : 1;
+	b->leaf_tbox = true;
+	rc = bvh_traverse(b, g, want, x, x);
+	b->leaf_tbox = saved;
+	return rc;
+}
+
+/* The patches a traversal would leave out now, judged top down from x as
+ * it judges them; a patch the held traversal left out that is no longer
+ * flat gives its pairs (they are not among the held ones). *given: some
+ * did. 0, or -1 out of memory or stopped. */
+static int
+judge_held(struct broad *b, const struct geom *g, const struct broad_want *want, int x,
+    int *given)
+{
+	const struct bvh_node *p = &b->node[x];
+	int rc;
+
+	if (leaf(p))
+		return 0;
+	if (b->held_mark[x]) {
+		rc = judge_patch(b, g, want, x);
+		*given |= rc == 0;
+		return rc < 0 ? -1 : 0;
+	}
+	if (p->patch && patch_flat(b, g, p))
+		return push_cull(b, x);
+	return judge_held(b, g, want, p->left, given) != 0 ||
+	    judge_held(b, g, want, p->right, given) != 0 ? -1 : 0;
+}
+
 /* The search's pairs, sorted, from the held ones, with b->dirty marking
- * the ndirty vertices out of their held boxes. */
+ * the ndirty vertices out of their held boxes. The patches left out are
+ * those a traversal would leave out: judged again for this search, the
+ * held pairs inside them dropped. */
 static int
 take_held(struct broad *b, const struct geom *g, const struct broad_want *want, int ndirty)
 {
+	size_t i;
+	int given = 0;
+
 	b->nvt = b->nee = 0;
-	if (fill_tri_boxes(b, g) != 0 || held_clean(b, g) != 0)
+	b->ncull = 0;
+	if (fill_tri_boxes(b, g) != 0)
 		return -1;
-	if (ndirty == 0)
+	if (b->cull_on && judge_held(b, g, want, b->cloth_root, &given) != 0)
+		return -1;
+	if (b->ncull > 0) {
+		for (i = 0; i < (size_t)b->node[b->cloth_root].count; i++)
+			b->tri_cull[i] = -1;
+		for (i = 0; i < b->ncull; i++) {
+			const struct bvh_node *p = &b->node[b->cull[i]];
+			int j;
+
+			for (j = p->first; j < p->first + p->count; j++)
+				b->tri_cull[b->leaf_tri[j]] = b->cull[i];
+		}
+	}
+	if (held_clean(b, g) != 0 || (ndirty > 0 && held_dirty(b, g, want) != 0))
+		return -1;
+	if (ndirty == 0 && !given)
 		return 0;	/* the held order is kept */
-	return held_dirty(b, g, want) != 0 ? -1 : bvh_sort(b, g);
+	if (bvh_sort(b, g) != 0)
+		return -1;
+	if (given)
+		unique_pairs(b);
+	return 0;
 }
 
 /* A search's pairs from the held ones: 0, 1 when too many vertices left
@@ -1492,6 +1962,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
     double skin)
 {
 	struct broad_want all = *want;
+	size_t e;
 
 	all.near = 0;
 	if (!b->held_valid)
@@ -1521,6 +1992,15 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	b->held_nvt = b->nvt;
 	b->held_nee = b->nee;
 	memcpy(b->held_box, b->allowed, 6 * (size_t)g->nv * sizeof *b->allowed);
+	if (grow((void **)&b->held_cull, &b->held_cullcap, b->ncull + 1, sizeof *b->held_cull) != 0)
+		return -1;
+	memcpy(b->held_cull, b->cull, b->ncull * sizeof *b->cull);
+	b->held_ncull = b->ncull;
+	if (b->held_mark != NULL) {
+		memset(b->held_mark, 0, (size_t)b->nnodes);
+		for (e = 0; e < b->ncull; e++)
+			b->held_mark[b->cull[e]] = 1;
+	}
 	b->held_want = all;
 	b->held_nv = g->nv;
 	b->held_valid = true;
@@ -1583,6 +2063,8 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 	}
 	if (b->node == NULL)
 		return 0;
+	if (cull_prepare(b, g, want) != 0)
+		return -1;
 	if (held_serves(b, g, want))
 		rc = find_held(b, g, want);
 	if (rc == 1)
@@ -1685,4 +2167,51 @@ broad_find(struct broad *b, const struct geom *g, double cell, const struct broa
 		b->valid_nv = g->nv;
 	}
 	return 0;
+}
+
+int
+broad_recheck(struct broad *b, const struct geom *g, const unsigned char *changed)
+{
+	size_t n = b->ncull, i;
+	int *old, given = 0, rc = 0, j, k;
+	bool boxes = false;
+
+	if (b->mode != BROAD_BVH || n == 0 || !b->cull_on)
+		return 0;
+	if ((old = malloc(n * sizeof *old)) == NULL)
+		return -1;
+	memcpy(old, b->cull, n * sizeof *old);
+	b->ncull = 0;
+	for (i = 0; i < n && rc >= 0; i++) {
+		const struct bvh_node *p = &b->node[old[i]];
+		bool moved = false;
+
+		for (j = p->first; j < p->first + p->count && !moved; j++)
+			for (k = 0; k < 3; k++)
+				moved |= changed[g->tri[3 * b->leaf_tri[j] + k]] != 0;
+		if (!moved) {
+			rc = push_cull(b, old[i]);
+			continue;
+		}
+		for (j = p->first; j < p->first + p->count; j++)
+			tri_deform(b, g, b->leaf_tri[j], 1);
+		node_sums(b, old[i], old[i] + 2 * p->count - 1);
+		if (!boxes && fill_tri_boxes(b, g) != 0) {
+			rc = -1;
+			break;
+		}
+		boxes = true;
+		rc = judge_patch(b, g, &b->cull_want, old[i]);
+		given |= rc == 0;
+	}
+	free(old);
+	if (rc >= 0 && given && bvh_sort(b, g) != 0)
+		rc = -1;
+	if (rc < 0) {
+		b->stopped = stop_asked(b);
+		return -1;
+	}
+	if (given)
+		unique_pairs(b);
+	return given;
 }

@@ -6,7 +6,10 @@
  *   (node A, triangles of B) and (node B, triangles of A), and the edges of
  *   A against the edges of B. Nodes in different cubes are never tested.
  * - grid: swept boxes; never misses what the narrow phase would find.
- * - brute: every pair, the ground truth. */
+ * - brute: every pair, the ground truth.
+ * - bvh: grid's pairs from a tree of boxes, less those inside a patch of
+ *   the cloth proven flat over the step (broad.c, "flat patches"), which
+ *   cannot touch. */
 #ifndef DRAPE_BROAD_H
 #define DRAPE_BROAD_H
 
@@ -47,6 +50,16 @@ struct geom {
 	 * including after the corrections the caller may make. The pairs
 	 * found stay sound for any path inside these boxes. */
 	const double *vbox;
+	/* Optional (NULL: none): the cloth's grid, which lets bvh leave out
+	 * the pairs of flat patches (broad.c). Per cloth triangle the square
+	 * it lies in (j * squares_u + i, of squares_u x squares_v), per cloth
+	 * vertex its place on the cloth at rest (u, v; 2 doubles); uv_gap the
+	 * least distance at rest between two primitives that share no vertex,
+	 * uv_diam the largest between two vertices of one primitive. */
+	const int *tri_square;
+	int squares_u, squares_v;
+	const double *uv;
+	double uv_gap, uv_diam;
 };
 
 /* What a caller needs found, beside each cloth node against the triangles
@@ -71,6 +84,10 @@ struct bvh_node {
 	double size;		/* the box's width + height + depth: which side to descend */
 	int left, right;	/* children, or -1 for a leaf */
 	int tri;		/* a leaf's triangle */
+	/* the triangles under it: leaf_tri[first .. first + count) */
+	int first, count;
+	bool patch;		/* a whole rectangle of the cloth's grid (a flat patch
+				 * may be left out; broad.c) */
 };
 
 struct vt_pair {
@@ -162,6 +179,24 @@ struct broad {
 	int held_nv;
 	double held_skin;	/* the held boxes' widening */
 	long held_uses;		/* searches the held pairs served */
+	/* bvh over a cloth's grid: the triangles in the order of the tree's
+	 * leaves; per cloth triangle its rest map's inverse (4) and its
+	 * deformation at x0 and x1 (12); the patches the last search left
+	 * out as flat, and those of the held pairs' traversal */
+	int *leaf_tri;
+	double *dminv, *tdef;
+	size_t tdefcap;
+	double *nsum;		/* per cloth node of the tree: its F's summed (6) */
+	size_t nsumcap;
+	int *cull, *held_cull;
+	unsigned char *held_mark;	/* per node: left out by the held traversal */
+	int *tri_cull;		/* per cloth triangle: the patch left out holding it, or -1 */
+	int *witness;		/* per node: where its last flat test failed (leaf_tri) */
+	size_t ncull, cullcap, held_ncull, held_cullcap;
+	bool cull_on;		/* this traversal may leave patches out */
+	bool leaf_tbox;		/* leaves' boxes from tbox (the tree's are stale) */
+	struct broad_want cull_want;	/* the search the patches are judged for */
+	double cull_tol;	/* the least eigenvalue taken as positive */
 	bool valid;		/* grid: the pairs may be kept (see broad.c) */
 	struct broad_want valid_want;
 	double valid_cell;
@@ -178,5 +213,11 @@ void broad_free(struct broad *b);
  * message (out of memory, or a cell too small for the scene's extent). */
 int broad_find(struct broad *b, const struct geom *g, double cell, const struct broad_want *want,
     struct drape_err *err);
+
+/* After the caller moved the ends (x1 of g) of the vertices marked in
+ * changed, within their boxes: the patches the last search left out as
+ * flat that are no longer give their pairs back (b->vt, b->ee, sorted
+ * again). 1 if pairs were added, 0 if none, -1 out of memory or stopped. */
+int broad_recheck(struct broad *b, const struct geom *g, const unsigned char *changed);
 
 #endif

@@ -94,6 +94,8 @@ collide_free(struct collide *c)
 	free(c->vedge_start);
 	free(c->vedge);
 	free(c->tri_obstacle);
+	free(c->tri_square);
+	free(c->uv);
 	free(c->fixed);
 	free(c->inv_mass);
 	free(c->changed);

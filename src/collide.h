@@ -65,6 +65,8 @@ struct collide {
 	size_t ntri, nedges;
 	int *vtri_start, *vtri, *vedge_start, *vedge;
 	int *tri_obstacle;	/* per triangle: its obstacle, or -1 */
+	int *tri_square;	/* per cloth triangle: its square of the grid */
+	double *uv;		/* per cloth node: its place on the cloth at rest */
 	unsigned char *fixed;	/* held nodes and obstacle vertices */
 	double *inv_mass;	/* 1/m, 0 for what contacts cannot move */
 	struct geom g;

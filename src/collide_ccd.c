@@ -239,6 +239,14 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 			c->stopped = true;	/* a signal: collide_step gives the step up */
 			return 0;
 		}
+		/* the flat patches the broad phase left out, judged again where
+		 * the last pass moved their nodes */
+		if (pass > 0 && c->pairs && broad_recheck(&c->br, &c->g, c->changed) < 0) {
+			if (!c->br.stopped)
+				return -1;
+			c->stopped = true;
+			return 0;
+		}
 		for (i = 0; c->pairs && i < c->br.nvt; i++) {
 			int vv = c->br.vt[i].v, t = c->br.vt[i].t;
 

@@ -1,6 +1,8 @@
 /* collide_geometry.c: the geometry contacts are sought in: the cloth's
  * triangles and edges, then each obstacle mesh's, renumbered into one set
  * of vertices, with vertex -> triangle and vertex -> edge incidence. */
+#include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,6 +47,48 @@ cmp_edge(const void *pa, const void *pb)
 	if (a[0] != b[0])
 		return a[0] < b[0] ? -1 : 1;
 	return (a[1] > b[1]) - (a[1] < b[1]);
+}
+
+/* The cloth's grid for the broad phase's flat patches (broad.h): each
+ * triangle's square and each node's place at rest. On a grid of squares
+ * of side h, each cut by one diagonal, two primitives that share no vertex
+ * are at least h / sqrt 2 apart at rest (a node and the far side of a
+ * square's triangle), and a primitive's vertices at most a diagonal. */
+static int
+grid_geometry(struct collide *c, const struct cloth *cl)
+{
+	size_t t;
+	int p, su = cl->nu - 1;
+
+	if ((c->tri_square = xcalloc(cl->ntri, sizeof *c->tri_square)) == NULL ||
+	    (c->uv = xcalloc(2 * (size_t)cl->n, sizeof *c->uv)) == NULL)
+		return -1;
+	for (p = 0; p < cl->n; p++) {
+		int i, j;
+
+		cloth_grid_ij(cl, p, &i, &j);
+		c->uv[2 * p] = i * cl->h;
+		c->uv[2 * p + 1] = j * cl->h;
+	}
+	for (t = 0; t < cl->ntri; t++) {
+		int i = INT_MAX, j = INT_MAX, k;
+
+		for (k = 0; k < 3; k++) {
+			int a, b;
+
+			cloth_grid_ij(cl, cl->tri[3 * t + (size_t)k], &a, &b);
+			i = a < i ? a : i;
+			j = b < j ? b : j;
+		}
+		c->tri_square[t] = j * su + i;
+	}
+	c->g.tri_square = c->tri_square;
+	c->g.squares_u = su;
+	c->g.squares_v = cl->nv - 1;
+	c->g.uv = c->uv;
+	c->g.uv_gap = cl->h / sqrt(2);
+	c->g.uv_diam = cl->h * sqrt(2);
+	return 0;
 }
 
 /* The cloth's triangles and edges, then each obstacle mesh's, renumbered. */
@@ -127,6 +171,7 @@ collide_build_geometry(struct collide *c, const struct cloth *cl, const unsigned
 		for (t = 0; t < 6; t++)
 			c->box[6 * k + t] = c->x0[3 * k + t % 3];
 	c->g = (struct geom){ c->nv, c->ncloth, c->x0, c->x1, c->tri, c->ntri, c->edge,
-	    c->nedges, c->vtri_start, c->vtri, c->vedge_start, c->vedge, c->fixed, NULL };
-	return 0;
+	    c->nedges, c->vtri_start, c->vtri, c->vedge_start, c->vedge, c->fixed, NULL,
+	    NULL, 0, 0, NULL, 0, 0 };
+	return cl->ntri > 0 && cl->nu > 1 && cl->nv > 1 ? grid_geometry(c, cl) : 0;
 }

@@ -607,12 +607,348 @@ test_bvh_held_pairs(void **state)
 	scene_free(&sc);
 }
 
+/* ---- flat patches (broad.c): what bvh leaves out must be harmless ---- */
+
+#define PI 3.14159265358979323846
+
+static double
+point_segment(vec3 p, vec3 a, vec3 b)
+{
+	vec3 d = v3_sub(b, a);
+	double dd = v3_dot(d, d), s = dd > 0 ? v3_dot(v3_sub(p, a), d) / dd : 0;
+
+	s = fmin(fmax(s, 0), 1);
+	return v3_len(v3_sub(p, v3_madd(a, d, s)));
+}
+
+/* The distance from p to triangle abc: to the plane where p projects
+ * inside, else to the nearest edge. */
+static double
+point_triangle(vec3 p, vec3 a, vec3 b, vec3 c)
+{
+	vec3 n = v3_cross(v3_sub(b, a), v3_sub(c, a));
+	double nn = v3_dot(n, n);
+
+	if (nn > 0) {
+		double h = v3_dot(v3_sub(p, a), n) / nn;
+		vec3 q = v3_madd(p, n, -h);
+		double u = v3_dot(v3_cross(v3_sub(b, q), v3_sub(c, q)), n);
+		double v = v3_dot(v3_cross(v3_sub(c, q), v3_sub(a, q)), n);
+		double w = v3_dot(v3_cross(v3_sub(a, q), v3_sub(b, q)), n);
+
+		if (u >= 0 && v >= 0 && w >= 0)
+			return fabs(h) * sqrt(nn);
+	}
+	return fmin(point_segment(p, a, b), fmin(point_segment(p, b, c), point_segment(p, c, a)));
+}
+
+/* Whether a pair the reference found and bvh left out is harmless: for
+ * the check (near 0), ccd finds no contact over x0 -> x1; for a step's
+ * contacts, the pair is out of the kept criterion's reach (contacts.h). */
+static void
+assert_harmless(const struct geom *g, const int *vert, int nvert_a, double near, double share)
+{
+	vec3 p0[4], p1[4];
+	double dist, rel = 0;
+	int k, l;
+
+	for (k = 0; k < 4; k++) {
+		p0[k] = v3_load(g->x0 + 3 * vert[k]);
+		p1[k] = v3_load(g->x1 + 3 * vert[k]);
+	}
+	if (near == 0) {
+		int hit = nvert_a == 1 ? ccd_vertex_face(p0, p1, 0, NULL) :
+		    ccd_edge_edge(p0, p1, 0, NULL);
+
+		if (hit)
+			fail_msg("left out a pair in contact: %d %d %d %d", vert[0], vert[1], vert[2],
+			    vert[3]);
+		return;
+	}
+	if (nvert_a == 1) {
+		dist = point_triangle(p0[0], p0[1], p0[2], p0[3]);
+	} else {
+		double s, u;
+
+		v3_closest_on_segments(p0[0], p0[1], p0[2], p0[3], &s, &u);
+		dist = v3_len(v3_sub(v3_madd(p0[0], v3_sub(p0[1], p0[0]), s),
+		    v3_madd(p0[2], v3_sub(p0[3], p0[2]), u)));
+	}
+	for (k = 0; k < nvert_a; k++)
+		for (l = nvert_a; l < 4; l++)
+			rel = fmax(rel, v3_len(v3_sub(v3_sub(p1[k], p0[k]), v3_sub(p1[l], p0[l]))));
+	if (!(dist - share * rel >= near))
+		fail_msg("left out a pair within reach: %d %d %d %d, %g m apart, relative "
+		    "motion %g m", vert[0], vert[1], vert[2], vert[3], dist, rel);
+}
+
+/* One search of g (x0 -> x1, boxes padded by pad) by bvh and by a
+ * reference without the cloth's grid (so without flat patches); bvh's
+ * pairs must be among the reference's and the rest harmless. Returns how
+ * many pairs bvh left out. */
+static long
+flat_search(struct broad *b, struct geom g, const double *x0, const double *x1, double pad,
+    double near)
+{
+	struct broad_want want = collide_broad_want(NARROW_CCD, true);
+	struct broad ref;
+	struct geom plain = g;
+	struct drape_err err;
+	double *box = malloc(6 * (size_t)g.nv * sizeof *box);
+	size_t i, j;
+	long out = 0;
+	int v, k;
+
+	assert_non_null(box);
+	for (v = 0; v < g.nv; v++)
+		for (k = 0; k < 3; k++) {
+			box[6 * v + k] = fmin(x0[3 * v + k], x1[3 * v + k]) - pad;
+			box[6 * v + 3 + k] = fmax(x0[3 * v + k], x1[3 * v + k]) + pad;
+		}
+	g.x0 = plain.x0 = x0;
+	g.x1 = plain.x1 = x1;
+	g.vbox = plain.vbox = box;
+	plain.tri_square = NULL;
+	plain.uv = NULL;
+	want.near = near;
+	want.near_motion = 1.5;
+	broad_init(&ref, BROAD_BVH);
+	if (broad_find(b, &g, 0.01, &want, &err) != 0 || broad_find(&ref, &plain, 0.01, &want, &err) != 0)
+		fail_msg("%s", err.msg);
+	for (i = j = 0; i < ref.nvt; i++) {
+		if (j < b->nvt && b->vt[j].v == ref.vt[i].v && b->vt[j].t == ref.vt[i].t) {
+			j++;
+			continue;
+		}
+		{
+			const int *t = g.tri + 3 * ref.vt[i].t;
+			int vert[4] = { ref.vt[i].v, t[0], t[1], t[2] };
+
+			assert_harmless(&g, vert, 1, near, 1.5);
+			out++;
+		}
+	}
+	assert_int_equal(j, b->nvt);	/* bvh's are the reference's, in order */
+	for (i = j = 0; i < ref.nee; i++) {
+		if (j < b->nee && b->ee[j].a == ref.ee[i].a && b->ee[j].b == ref.ee[i].b) {
+			j++;
+			continue;
+		}
+		{
+			const int *ea = g.edge + 2 * ref.ee[i].a, *eb = g.edge + 2 * ref.ee[i].b;
+			int vert[4] = { ea[0], ea[1], eb[0], eb[1] };
+
+			assert_harmless(&g, vert, 2, near, 1.5);
+			out++;
+		}
+	}
+	assert_int_equal(j, b->nee);
+	broad_free(&ref);
+	free(box);
+	return out;
+}
+
+/* The cloth at rest coordinates (u, v) put in space by shape kind with
+ * parameter a (m), then turned by angle about y and moved by off. */
+static vec3
+shaped(int kind, double a, double u, double v, double turn, vec3 off)
+{
+	vec3 p;
+
+	switch (kind) {
+	case 0:		/* flat */
+		p = v3(u, 0, v);
+		break;
+	case 1:		/* wrapped round a cylinder of radius a (layers meet past a turn) */
+		p = v3(a * sin(u / a), a * (1 - cos(u / a)), v);
+		break;
+	case 2:		/* folded over at u = 0.1 m, a bend of radius a */
+		if (u < 0.1) {
+			p = v3(u, 0, v);
+		} else if (u < 0.1 + PI * a) {
+			double th = (u - 0.1) / a;
+
+			p = v3(0.1 + a * sin(th), a * (1 - cos(th)), v);
+		} else {
+			p = v3(0.1 - (u - 0.1 - PI * a), 2 * a, v);
+		}
+		break;
+	case 3:		/* waves of amplitude a, 20 mm long */
+		p = v3(u, a * sin(2 * PI * u / 0.02) * cos(2 * PI * v / 0.03), v);
+		break;
+	default:	/* pressed along u to a fraction a / 0.01 of its length */
+		p = v3(u * a / 0.01, 0, v);
+		break;
+	}
+	return v3_add(v3(p.x * cos(turn) + p.z * sin(turn), p.y, -p.x * sin(turn) + p.z * cos(turn)),
+	    off);
+}
+
+/* Flat patches: a flat cloth moving as a whole gives no self pairs at all
+ * (the cull works); cloths bent, wrapped, folded, waved and pressed,
+ * moving as other shapes of their kind with noise, give only pairs the
+ * reference gives, and leave out only harmless ones, for the check and
+ * for a step's contacts. Then a check whose corrections fold a flat
+ * patch through itself gets the patch's pairs back (broad_recheck). */
+static void
+test_flat_patches(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct broad b;
+	const struct geom *g;
+	const struct cloth *cl;
+	double *x0, *x1, a[5][3] = { { 0, 0, 0 }, { 2e-3, 8e-3, 0.05 },
+	    { 0.1e-3, 1e-3, 5e-3 }, { 0.5e-3, 3e-3, 8e-3 }, { 0.7e-3, 2e-3, 0.01 } };
+	unsigned rng = 777;
+	long out = 0, searches = 0, in_contact = 0;
+	int kind, i, j, p, n, e;
+	size_t k;
+
+	(void)state;
+	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
+	st = new_stepper(&sc);
+	g = stepper_geom(st);
+	cl = cloth_of(st);
+	assert_non_null(g->tri_square);
+	n = cl->n;
+	assert_int_equal(g->nv, n);
+	x0 = malloc(3 * (size_t)n * sizeof *x0);
+	x1 = malloc(3 * (size_t)n * sizeof *x1);
+	assert_true(x0 != NULL && x1 != NULL);
+	broad_init(&b, BROAD_BVH);
+
+	/* flat, moving as a whole: nothing to test at all */
+	for (p = 0; p < n; p++) {
+		cloth_grid_ij(cl, p, &i, &j);
+		v3_store(x0 + 3 * p, shaped(0, 0, i * cl->h, j * cl->h, 0.3, v3(0, 0.1, 0)));
+		v3_store(x1 + 3 * p, shaped(0, 0, i * cl->h, j * cl->h, 0.35, v3(0.004, 0.09, 0)));
+	}
+	for (e = 0; e < 2; e++) {
+		long left = flat_search(&b, *g, x0, x1, e ? 1e-3 : 0, e ? 0.6875e-3 : 0);
+
+		print_message("flat patches: a flat cloth moving as a whole, %s: none of the "
+		    "reference's %ld pairs\n", e ? "contacts" : "check", left);
+		assert_int_equal(b.nvt + b.nee, 0);
+		assert_int_equal(b.ncull, 1);	/* the whole cloth, at once */
+		assert_true(e || left > 1000);
+	}
+	/* bent every way */
+	for (kind = 1; kind < 5; kind++)
+		for (e = 0; e < 3; e++) {
+			double noise = e == 0 ? 0 : e == 1 ? 1e-4 : 2e-3;
+			double turn = 0.1 * kind, s = 1 + 0.1 * e;
+
+			for (p = 0; p < n; p++) {
+				vec3 q;
+
+				cloth_grid_ij(cl, p, &i, &j);
+				v3_store(x0 + 3 * p, shaped(kind, a[kind][e], i * cl->h, j * cl->h, turn,
+				    v3(0, 0.1, 0)));
+				q = shaped(kind, a[kind][e] * s, i * cl->h, j * cl->h, turn + 0.02,
+				    v3(0, 0.1 - 0.003 * e, 0));
+				for (k = 0; k < 3; k++) {
+					rng = rng * 1103515245u + 12345u;
+					q.x += noise * ((double)((rng >> 16) % 2001) / 1000 - 1) / 3;
+				}
+				v3_store(x1 + 3 * p, q);
+			}
+			out += flat_search(&b, *g, x0, x1, 0, 0);
+			out += flat_search(&b, *g, x0, x1, 1e-3, 0.6875e-3);
+			out += flat_search(&b, *g, x0, x0, 0, 0.6875e-3);
+			searches += 3;
+		}
+	/* flat at the start, folded through itself at the end */
+	for (p = 0; p < n; p++) {
+		cloth_grid_ij(cl, p, &i, &j);
+		v3_store(x0 + 3 * p, v3(i * cl->h, 0.1, j * cl->h));
+		v3_store(x1 + 3 * p, i <= 12 ? v3(i * cl->h, 0.099, j * cl->h) :
+		    v3((24 - i) * cl->h + 0.3e-3, 0.098, j * cl->h + 0.2e-3));
+	}
+	out += flat_search(&b, *g, x0, x1, 0, 0);
+	searches++;
+	print_message("flat patches: %ld pairs left out in %ld searches of bent cloths, each "
+	    "harmless\n", out, searches);
+	assert_true(out > 10000);
+
+	/* the check's corrections fold a flat cloth's half through the other */
+	for (p = 0; p < n; p++) {
+		cloth_grid_ij(cl, p, &i, &j);
+		v3_store(x0 + 3 * p, v3(i * cl->h, 0.1, j * cl->h));
+		v3_store(x1 + 3 * p, v3(i * cl->h, 0.099, j * cl->h));
+	}
+	{
+		struct broad_want want = collide_broad_want(NARROW_CCD, true);
+		struct geom gg = *g;
+		struct drape_err err;
+		unsigned char *changed = calloc((size_t)n, 1);
+		double *box = malloc(6 * (size_t)n * sizeof *box);
+
+		assert_true(changed != NULL && box != NULL);
+		for (p = 0; p < n; p++)
+			for (k = 0; k < 6; k++)
+				box[6 * p + k] = x0[3 * p + k % 3] + (k < 3 ? -0.3 : 0.3);
+		gg.x0 = x0;
+		gg.x1 = x1;
+		gg.vbox = box;
+		if (broad_find(&b, &gg, 0.01, &want, &err) != 0)
+			fail_msg("%s", err.msg);
+		assert_int_equal(b.nvt + b.nee, 0);
+		for (p = 0; p < n; p++) {
+			cloth_grid_ij(cl, p, &i, &j);
+			if (i <= 12)
+				continue;
+			/* under the other half, and past it */
+			v3_store(x1 + 3 * p, v3((24 - i) * cl->h + 0.3e-3, 0.098, j * cl->h + 0.2e-3));
+			changed[p] = 1;
+		}
+		assert_int_equal(broad_recheck(&b, &gg, changed), 1);
+		{
+			struct broad ref;
+			struct geom plain = gg;
+
+			plain.tri_square = NULL;
+			plain.uv = NULL;
+			broad_init(&ref, BROAD_BVH);
+			if (broad_find(&ref, &plain, 0.01, &want, &err) != 0)
+				fail_msg("%s", err.msg);
+			for (k = 0; k < ref.nvt; k++) {
+				const int *t = gg.tri + 3 * ref.vt[k].t;
+				vec3 q0[4], q1[4];
+				int vert[4] = { ref.vt[k].v, t[0], t[1], t[2] }, m;
+
+				for (m = 0; m < 4; m++) {
+					q0[m] = v3_load(x0 + 3 * vert[m]);
+					q1[m] = v3_load(x1 + 3 * vert[m]);
+				}
+				if (!ccd_vertex_face(q0, q1, 0, NULL))
+					continue;
+				in_contact++;
+				if (!has_vt(&b, ref.vt[k].v, ref.vt[k].t))
+					fail_msg("a pair in contact after the fold is missing");
+			}
+			broad_free(&ref);
+		}
+		print_message("flat patches: %ld vertex-triangle pairs in contact after a fold, "
+		    "all given back\n", in_contact);
+		assert_true(in_contact > 20);
+		free(changed);
+		free(box);
+	}
+	broad_free(&b);
+	free(x0);
+	free(x1);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_failsafe_jam),
 		cmocka_unit_test(test_bvh_held_pairs),
+		cmocka_unit_test(test_flat_patches),
 		cmocka_unit_test(test_icosahedron),
 		cmocka_unit_test(test_tablecloth_clean),
 		cmocka_unit_test(test_strip_fast_clean),

@@ -443,9 +443,13 @@ fill_allowed(struct broad *b, const struct geom *g, double skin)
 	for (v = 0; v < g->nv; v++) {
 		double *a = b->allowed + 6 * v;
 
-		box_empty(a);
-		vertex_box(a, g, v);
-		for (k = 0; k < 3; k++) {
+		if (g->vbox != NULL) {	/* a box already (lo <= hi) */
+			memcpy(a, g->vbox + 6 * v, 6 * sizeof *a);
+		} else {
+			box_empty(a);
+			vertex_box(a, g, v);
+		}
+		for (k = 0; skin != 0 && k < 3; k++) {
 			a[k] -= skin;
 			a[3 + k] += skin;
 		}
@@ -1933,12 +1937,14 @@ fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want 
 	fill_allowed(b, g, skin);
 	/* a vertex's query box, widened if asked to the segments from its
 	 * neighbours at step k (as the grid's) */
-	for (v = 0; v < g->nv; v++) {
+	if (!want->neighbour_paths)
+		memcpy(b->qbox, b->allowed, 6 * (size_t)g->nv * sizeof *b->qbox);
+	for (v = 0; want->neighbour_paths && v < g->nv; v++) {
 		double *q = b->qbox + 6 * v;
 
 		box_empty(q);
 		allowed_box(q, b, v);
-		for (k = g->vedge_start[v]; want->neighbour_paths && k < g->vedge_start[v + 1]; k++) {
+		for (k = g->vedge_start[v]; k < g->vedge_start[v + 1]; k++) {
 			const int *en = g->edge + 2 * g->vedge[k];
 
 			allowed_box(q, b, en[0] == v ? en[1] : en[0]);
@@ -1946,10 +1952,13 @@ fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want 
 	}
 	for (e = 0; e < g->nedges; e++) {
 		double *eb = b->ebox + 6 * e;
+		const double *p = b->allowed + 6 * (size_t)g->edge[2 * e];
+		const double *q = b->allowed + 6 * (size_t)g->edge[2 * e + 1];
 
-		box_empty(eb);
-		allowed_box(eb, b, g->edge[2 * e]);
-		allowed_box(eb, b, g->edge[2 * e + 1]);
+		for (k = 0; k < 3; k++) {
+			eb[k] = p[k] < q[k] ? p[k] : q[k];
+			eb[3 + k] = p[3 + k] > q[3 + k] ? p[3 + k] : q[3 + k];
+		}
 	}
 }
 

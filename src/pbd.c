@@ -276,14 +276,26 @@ obstacles(struct pbd *pb, double *x)
 
 	for (o = 0; o < sc->nobstacles; o++) {
 		const struct obstacle *ob = &sc->obstacles[o];
+		vec3 lo, hi;
 
 		if (ob->kind == OBSTACLE_MESH)
 			continue;
+		/* a node farther than the clearance from the solid's bounds,
+		 * with a margin over the distance's roundings, is farther from
+		 * the solid: most nodes, most substeps, for a test of six
+		 * comparisons where the distance costs some 70 instructions */
+		obstacle_bounds(ob, &lo, &hi);
+		lo = v3_sub(lo, v3(clear, clear, clear));
+		hi = v3_add(hi, v3(clear, clear, clear));
+		lo = v3_sub(lo, v3_scale(v3(fabs(lo.x), fabs(lo.y), fabs(lo.z)), 1e-9));
+		hi = v3_add(hi, v3_scale(v3(fabs(hi.x), fabs(hi.y), fabs(hi.z)), 1e-9));
 		for (p = 0; p < cl->n; p++) {
 			vec3 xp = v3_load(x + 3 * p), q, n, dx, dt;
 			double d, push, slip;
 
-			if (pb->w[p] == 0 || (d = obstacle_distance(ob, xp, &q, &n)) >= clear)
+			if (pb->w[p] == 0 || xp.x < lo.x || xp.y < lo.y || xp.z < lo.z ||
+			    xp.x > hi.x || xp.y > hi.y || xp.z > hi.z ||
+			    (d = obstacle_distance(ob, xp, &q, &n)) >= clear)
 				continue;
 			push = clear - d;
 			xp = v3_madd(xp, n, push);

@@ -1996,14 +1996,19 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	    grow((void **)&b->held_box, &b->held_boxcap, 6 * (size_t)g->nv,
 	    sizeof *b->held_box) != 0)
 		return -1;
-	memcpy(b->held_vt, b->vt, b->nvt * sizeof *b->vt);
-	memcpy(b->held_ee, b->ee, b->nee * sizeof *b->ee);
+	/* none found (a flat cloth's lists may never have been made):
+	 * memcpy from NULL is undefined even for no bytes */
+	if (b->nvt > 0)
+		memcpy(b->held_vt, b->vt, b->nvt * sizeof *b->vt);
+	if (b->nee > 0)
+		memcpy(b->held_ee, b->ee, b->nee * sizeof *b->ee);
 	b->held_nvt = b->nvt;
 	b->held_nee = b->nee;
 	memcpy(b->held_box, b->allowed, 6 * (size_t)g->nv * sizeof *b->allowed);
 	if (grow((void **)&b->held_cull, &b->held_cullcap, b->ncull + 1, sizeof *b->held_cull) != 0)
 		return -1;
-	memcpy(b->held_cull, b->cull, b->ncull * sizeof *b->cull);
+	if (b->ncull > 0)
+		memcpy(b->held_cull, b->cull, b->ncull * sizeof *b->cull);
 	b->held_ncull = b->ncull;
 	if (b->held_mark != NULL) {
 		memset(b->held_mark, 0, (size_t)b->nnodes);

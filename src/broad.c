@@ -2081,6 +2081,7 @@ find_bvh(struct broad *b, const struct geom *g, double cell, const struct broad_
 		return -1;
 	if (held_serves(b, g, want))
 		rc = find_held(b, g, want);
+	b->tree_covers = rc == 1;	/* a traversal refits the tree */
 	if (rc == 1)
 		rc = hold_traversal(b, g, want, HELD_SKIN * cell);
 	if (rc != 0)
@@ -2210,11 +2211,27 @@ broad_recheck(struct broad *b, const struct geom *g, const unsigned char *change
 		for (j = p->first; j < p->first + p->count; j++)
 			tri_deform(b, g, b->leaf_tri[j], 1);
 		node_sums(b, old[i], old[i] + 2 * p->count - 1);
+		if (patch_flat(b, g, p)) {
+			rc = push_cull(b, old[i]);
+			continue;
+		}
+		/* its pairs: found in a tree that holds this search's boxes.
+		 * A search served by the held pairs left the tree with the held
+		 * boxes, which a dirty vertex's may exceed (its pairs came from
+		 * queries, which left this patch out): refit it, and let the
+		 * next search traverse, as the held pairs' queries need the
+		 * held boxes. A fold is rare; this costs a traversal when one
+		 * comes. */
 		if (!boxes && fill_tri_boxes(b, g) != 0) {
 			rc = -1;
 			break;
 		}
 		boxes = true;
+		if (!b->tree_covers) {
+			bvh_refit(b, g);
+			b->tree_covers = true;
+			b->held_valid = false;
+		}
 		rc = judge_patch(b, g, &b->cull_want, old[i]);
 		given |= rc == 0;
 	}

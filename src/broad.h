@@ -195,6 +195,8 @@ struct broad {
 	size_t ncull, cullcap, held_ncull, held_cullcap;
 	bool cull_on;		/* this traversal may leave patches out */
 	bool leaf_tbox;		/* leaves' boxes from tbox (the tree's are stale) */
+	bool tree_covers;	/* the tree's boxes hold this search's (else they are
+				 * the held ones, and a dirty vertex may be out) */
 	struct broad_want cull_want;	/* the search the patches are judged for */
 	double cull_tol;	/* the least eigenvalue taken as positive */
 	bool valid;		/* grid: the pairs may be kept (see broad.c) */

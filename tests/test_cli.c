@@ -556,8 +556,11 @@ drape_signalled(struct result *r, const char *args, int sig, double delay)
  * says that it gave up the step under way, and its replay is closed.
  * Before the flag was polled within a step, the step was finished first
  * and no step was given up. No clock is asserted (the time to stop is
- * printed): a signal that fell between two steps, a few microseconds
- * against a third of a second, would fail this. */
+ * printed). A signal may fall between two steps, where the recording
+ * writes its frames and chunks (a CI run once hung up there, at step 6):
+ * each run must stop with 130 and say at which step, and at least one of
+ * the five must have given up the step under way (all five falling
+ * between steps is far less likely than one). */
 static void
 signals_within_a_step(void **state)
 {
@@ -579,6 +582,7 @@ signals_within_a_step(void **state)
 	struct result r, info;
 	double took;
 	size_t i;
+	int given_up = 0;
 
 	(void)state;
 	for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
@@ -589,15 +593,18 @@ signals_within_a_step(void **state)
 		print_message("%s%s%s after %.1f s: stopped in %.3f s\n", sigs[i].word,
 		    *sigs[i].opt ? ", " : "", sigs[i].opt, sigs[i].delay, took);
 		if (r.status != 130 || strstr(r.err, sigs[i].word) == NULL ||
-		    strstr(r.err, " at step ") == NULL ||
-		    strstr(r.err, "; the step under way was given up") == NULL)
-			fail_msg("%s: status %d, stderr '%s'; expected 130 and the step under way "
-			    "given up", sigs[i].word, r.status, r.err);
+		    strstr(r.err, " at step ") == NULL)
+			fail_msg("%s: status %d, stderr '%s'; expected 130 and the step it "
+			    "stopped at", sigs[i].word, r.status, r.err);
+		given_up += strstr(r.err, "; the step under way was given up") != NULL;
 		snprintf(args, sizeof args, "info '%s/sig.drr'", dir);
 		drape(&info, args);
 		assert_int_equal(info.status, 0);
 		assert_non_null(strstr(info.out, "closed cleanly"));
 	}
+	print_message("%d of %zu signals gave up the step under way\n", given_up,
+	    sizeof sigs / sizeof sigs[0]);
+	assert_true(given_up >= 1);
 }
 
 /* Issue 13: a large cloth with nothing to collide with spends its step in

@@ -968,7 +968,7 @@ bvh_rest_maps(struct broad *b, const struct geom *g, size_t ncloth_tri)
 	if (g->tri_square == NULL || g->uv == NULL || ncloth_tri == 0)
 		return 0;
 	if ((b->dminv = malloc(4 * ncloth_tri * sizeof *b->dminv)) == NULL ||
-	    (b->tri_cull = malloc(ncloth_tri * sizeof *b->tri_cull)) == NULL ||
+	    (b->tri_cull = malloc(g->ntri * sizeof *b->tri_cull)) == NULL ||
 	    (b->held_mark = calloc(2 * g->ntri, 1)) == NULL ||
 	    (b->witness = calloc(2 * g->ntri, sizeof *b->witness)) == NULL)
 		return -1;
@@ -1639,8 +1639,7 @@ edge_dirty(const struct broad *b, const struct geom *g, int e)
 static int
 culled(const struct broad *b, int ta, int tb)
 {
-	return b->ncull > 0 && ta >= 0 && tb >= 0 && ta < b->node[b->cloth_root].count &&
-	    tb < b->node[b->cloth_root].count && b->tri_cull[ta] >= 0 &&
+	return b->ncull > 0 && ta >= 0 && tb >= 0 && b->tri_cull[ta] >= 0 &&
 	    b->tri_cull[ta] == b->tri_cull[tb];
 }
 
@@ -1867,22 +1866,26 @@ judge_held(struct broad *b, const struct geom *g, const struct broad_want *want,
 
 /* The search's pairs, sorted, from the held ones, with b->dirty marking
  * the ndirty vertices out of their held boxes. The patches left out are
- * those a traversal would leave out: judged again for this search, the
- * held pairs inside them dropped. */
+ * those a traversal would leave out: judged again for this search (unless
+ * judge is false: the held traversal's were judged for this very search),
+ * the held pairs inside them dropped. */
 static int
-take_held(struct broad *b, const struct geom *g, const struct broad_want *want, int ndirty)
+take_held(struct broad *b, const struct geom *g, const struct broad_want *want, int ndirty,
+    bool judge)
 {
 	size_t i;
 	int given = 0;
 
 	b->nvt = b->nee = 0;
-	b->ncull = 0;
 	if (fill_tri_boxes(b, g) != 0)
 		return -1;
-	if (b->cull_on && judge_held(b, g, want, b->cloth_root, &given) != 0)
-		return -1;
+	if (judge) {
+		b->ncull = 0;
+		if (b->cull_on && judge_held(b, g, want, b->cloth_root, &given) != 0)
+			return -1;
+	}
 	if (b->ncull > 0) {
-		for (i = 0; i < (size_t)b->node[b->cloth_root].count; i++)
+		for (i = 0; i < g->ntri; i++)
 			b->tri_cull[i] = -1;
 		for (i = 0; i < b->ncull; i++) {
 			const struct bvh_node *p = &b->node[b->cull[i]];
@@ -1922,7 +1925,7 @@ find_held(struct broad *b, const struct geom *g, const struct broad_want *want)
 	if (ndirty > g->nv / HELD_DIRTY_SHARE)
 		return 1;
 	b->held_uses++;
-	return take_held(b, g, want, ndirty);
+	return take_held(b, g, want, ndirty, true);
 }
 
 /* Each vertex's query box and each edge's box, from the vertices' boxes
@@ -2025,7 +2028,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	if (grow((void **)&b->dirty, &b->dirtycap, (size_t)g->nv, 1) != 0)
 		return -1;
 	memset(b->dirty, 0, (size_t)g->nv);
-	return take_held(b, g, want, 0);
+	return take_held(b, g, want, 0, false);
 }
 
 /* The pairs that pass want's near test, in order. */

@@ -190,7 +190,7 @@ struct broad {
 	size_t nsumcap;
 	int *cull, *held_cull;
 	unsigned char *held_mark;	/* per node: left out by the held traversal */
-	int *tri_cull;		/* per cloth triangle: the patch left out holding it, or -1 */
+	int *tri_cull;		/* per triangle: the patch left out holding it, or -1 */
 	int *witness;		/* per node: where its last flat test failed (leaf_tri) */
 	size_t ncull, cullcap, held_ncull, held_cullcap;
 	bool cull_on;		/* this traversal may leave patches out */

@@ -31,6 +31,15 @@ static inline vec3 v3_madd(vec3 a, vec3 b, double s)
 	return (vec3){ a.x + s * b.x, a.y + s * b.y, a.z + s * b.z };
 }
 
+/* x clamped to [0, 1], NaN to 0 as fmin(fmax(x, 0), 1) takes it; inline,
+ * where those are library calls (the contacts' edge pairs call this some
+ * hundred thousand times a step in a pile). */
+static inline double
+v3_clamp01(double x)
+{
+	return x > 0 ? (x < 1 ? x : 1) : 0;
+}
+
 /* The closest points of segments p0-p1 and q0-q1, as their parameters s
  * and u (0 to 1 along each), after Ericson's Real-Time Collision
  * Detection, 5.1.9; a degenerate segment is taken at its start. */
@@ -41,11 +50,11 @@ v3_closest_on_segments(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
 	double a = v3_dot(d1, d1), e = v3_dot(d2, d2), f = v3_dot(d2, r);
 	double c = v3_dot(d1, r), b = v3_dot(d1, d2), den = a * e - b * b;
 
-	*s = den > 0 ? fmin(fmax((b * f - c * e) / den, 0), 1) : 0;
+	*s = den > 0 ? v3_clamp01((b * f - c * e) / den) : 0;
 	*u = e > 0 ? (b * *s + f) / e : 0;
 	if (*u < 0 || *u > 1) {
-		*u = fmin(fmax(*u, 0), 1);
-		*s = a > 0 ? fmin(fmax((b * *u - c) / a, 0), 1) : 0;
+		*u = v3_clamp01(*u);
+		*s = a > 0 ? v3_clamp01((b * *u - c) / a) : 0;
 	}
 }
 

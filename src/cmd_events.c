@@ -1,19 +1,55 @@
 /* cmd_events.c: `drape events FILE [--node N] [--type T] [--from S] [--to S]`:
- * a replay's collision events, one per line, tab-separated, for awk and sort. */
+ * a replay's collision events, one per line, tab-separated, for awk and sort.
+ * Those a replay holds as a digest are recomputed (replay_events.h); steps
+ * whose events are unavailable are named on stderr, and the exit status
+ * is then 1, the other steps' events listed all the same. */
 #include <errno.h>
 #include <getopt.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cmd.h"
 #include "replay.h"
+#include "replay_events.h"
 
 static int
 bad(const char *opt, const char *val, const char *what)
 {
 	fprintf(stderr, "drape events: %s '%s': expected %s\n", opt, val, what);
 	return EXIT_USAGE;
+}
+
+/* Steps whose events are unavailable, said once for each run of chunks
+ * with the same reason (a scene that does not run here is every chunk's). */
+struct gap {
+	bool open;
+	unsigned long first, last;
+	char why[512];
+};
+
+static void
+gap_say(struct gap *g, const char *file)
+{
+	if (g->open)
+		fprintf(stderr, "drape events: %s: the events of steps %lu to %lu are unavailable: "
+		    "%s\n", file, g->first, g->last, g->why);
+	g->open = false;
+}
+
+static void
+gap_add(struct gap *g, const char *file, const struct replay_chunk *c, const char *why)
+{
+	unsigned long first = (unsigned long)c->first_step, last = first + c->count - 1;
+
+	if (g->open && first == g->last + 1 && strcmp(why, g->why) == 0) {
+		g->last = last;
+		return;
+	}
+	gap_say(g, file);
+	*g = (struct gap){ .open = true, .first = first, .last = last };
+	snprintf(g->why, sizeof g->why, "%s", why);
 }
 
 static int
@@ -40,6 +76,8 @@ cmd_events(int argc, char **argv)
 	long node = -1, from = 0, to = LONG_MAX;
 	int type = -1, c, k, rc = EXIT_OK;
 	struct replay r;
+	struct replay_events re;
+	struct gap gap = { .open = false };
 	struct replay_steps ss;
 	struct drape_err err;
 	size_t i, e;
@@ -97,15 +135,23 @@ cmd_events(int argc, char **argv)
 		fprintf(stderr, "drape events: %s: %zu whole chunks%s%s; listing what they hold\n",
 		    argv[optind], r.nchunks, r.cut ? ", cut short" : "",
 		    r.nbad > 0 ? ", some with a bad CRC" : "");
+	replay_events_init(&re, &r, argv[optind]);
 	printf("step\tnode\ttype\tother\tobstacle\tqx\tqy\tqz\tnx\tny\tnz\tvn_before\tvn_after\n");
 	for (i = 0; i < r.nchunks; i++) {
 		const struct replay_chunk *ch = &r.chunk[i];
+		int got;
 
-		if (ch->kind != REPLAY_STEPS || (long)ch->first_step > to ||
+		if (!replay_is_steps(ch->kind) || (long)ch->first_step > to ||
 		    (long)(ch->first_step + ch->count) <= from)
 			continue;
-		if (replay_read_steps(&r, i, &ss, &err) != 0) {
-			fprintf(stderr, "drape events: %s: %s; skipped\n", argv[optind], err.msg);
+		if ((got = replay_events_read(&re, i, &ss, &err)) != 0) {
+			if (got == REPLAY_EVENTS_UNAVAILABLE) {
+				gap_add(&gap, argv[optind], ch, re.why);
+				replay_steps_free(&ss);
+				rc = EXIT_RUNTIME;
+			} else
+				fprintf(stderr, "drape events: %s: %s; skipped\n", argv[optind],
+				    err.msg);
 			continue;
 		}
 		for (e = 0; e < ss.nev; e++) {
@@ -121,6 +167,8 @@ cmd_events(int argc, char **argv)
 		}
 		replay_steps_free(&ss);
 	}
+	gap_say(&gap, argv[optind]);
+	replay_events_free(&re);
 	replay_close(&r);
 	if (fflush(stdout) != 0 || ferror(stdout)) {
 		perror("drape events: stdout");

@@ -23,7 +23,7 @@ count_events(const struct replay *r, long *nev, double *t_end, size_t *unreadabl
 	*t_end = 0;
 	*unreadable = 0;
 	for (i = 0; i < r->nchunks; i++) {
-		if (r->chunk[i].kind != REPLAY_STEPS)
+		if (!replay_is_steps(r->chunk[i].kind))
 			continue;
 		if (replay_read_step_stats(r, i, &ss, &err) != 0) {
 			(*unreadable)++;
@@ -62,8 +62,9 @@ cmd_info(int argc, char **argv)
 	struct replay r;
 	struct drape_err err;
 	const struct replay_meta *m;
-	uint64_t bytes[REPLAY_KIND_MAX + 1] = { 0 }, frame_bytes;
+	uint64_t bytes[REPLAY_KIND_MAX + 1] = { 0 }, frame_bytes, step_bytes;
 	size_t i, unreadable;
+	int k;
 	long nev;
 	double t_end, node_frames, precision;
 
@@ -88,6 +89,7 @@ cmd_info(int argc, char **argv)
 	count_events(&r, &nev, &t_end, &unreadable);
 	frame_bytes = bytes[REPLAY_FRAMES] + bytes[REPLAY_FRAMES_Q] + bytes[REPLAY_FRAMES_GRID] +
 	    bytes[REPLAY_FRAMES_GRID_Q];
+	step_bytes = bytes[REPLAY_STEPS] + bytes[REPLAY_STEPS_DIGEST];
 	precision = lossy_precision(&r);
 	node_frames = (double)m->nodes * (double)(r.nframes > 0 ? r.nframes : 1);
 
@@ -109,16 +111,22 @@ cmd_info(int argc, char **argv)
 		printf(", rounded to %.9g m (within %.9g m of the run)", precision, precision / 2);
 	printf("\n");
 	printf("keyframes    %zu (every %ld steps)\n", r.nkeyframes, m->keyframe_every);
-	printf("events       %ld\n", nev);
+	printf("events       %ld", nev);
+	/* how they are held: drape events recomputes the digests' */
+	for (i = 0, k = 0; i < r.nchunks; i++)
+		k |= r.chunk[i].kind == REPLAY_STEPS ? 1 :
+		    r.chunk[i].kind == REPLAY_STEPS_DIGEST ? 2 : 0;
+	printf("%s\n", k == 1 ? " (stored)" : k == 2 ? " (a digest: recomputed when read)" :
+	    k == 3 ? " (some stored, some a digest)" : "");
 	printf("simulated    %.9g s\n", t_end);
 	printf("file size    %" PRIu64 " bytes: scene %" PRIu64 ", frames %" PRIu64 ", keyframes %"
 	    PRIu64 ", steps (statistics and events) %" PRIu64 ", index %" PRIu64 "\n", r.len,
-	    bytes[REPLAY_META], frame_bytes, bytes[REPLAY_KEYFRAME], bytes[REPLAY_STEPS],
+	    bytes[REPLAY_META], frame_bytes, bytes[REPLAY_KEYFRAME], step_bytes,
 	    bytes[REPLAY_INDEX]);
 	printf("bytes/node/frame %.3f in all, %.3f for the frames alone, %.3f without the steps "
 	    "chunks (raw float32: 12)\n", (double)r.len / node_frames,
 	    (double)frame_bytes / node_frames,
-	    (double)(r.len - bytes[REPLAY_STEPS]) / node_frames);
+	    (double)(r.len - step_bytes) / node_frames);
 	printf("integrity    ");
 	if (r.nbad == 0 && !r.cut && unreadable == 0)
 		printf("whole: %zu chunks\n", r.nchunks);

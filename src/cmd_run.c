@@ -71,6 +71,7 @@ struct run_opts {
 	struct tui_opts tui;
 	long keyframe_every;	/* 0: the default */
 	double precision;	/* of recorded frames, m; 0: exact */
+	bool events_stored;	/* --events stored: every event, not their digest */
 	const char **sets;	/* --set, in order (room for argc of them) */
 	size_t nsets;
 	enum run_format summary;
@@ -153,6 +154,12 @@ take_option(struct run_opts *o, int c, const char *arg)
 		if (errno != 0 || end == arg || *end != '\0' || o->keyframe_every < 1)
 			return bad_option("--keyframe-every", arg, "a whole number of steps from 1");
 		break;
+	case 'E':
+		if (strcmp(arg, "stored") == 0 || strcmp(arg, "digest") == 0)
+			o->events_stored = strcmp(arg, "stored") == 0;
+		else
+			return bad_option("--events", arg, "stored or digest");
+		break;
 	case 'P':
 		/* a grid step under a nanometre would not fit a frame's
 		 * coordinates in 32 bits anyway (replay.c writes those exact) */
@@ -182,6 +189,7 @@ parse_options(int argc, char **argv, struct run_opts *o)
 		{ "resume", required_argument, NULL, 'R' },
 		{ "keyframe-every", required_argument, NULL, 'k' },
 		{ "precision", required_argument, NULL, 'P' },
+		{ "events", required_argument, NULL, 'E' },
 		{ "ascii", no_argument, NULL, 'A' },
 		{ "unicode", no_argument, NULL, 'U' },
 		{ "blocks", no_argument, NULL, 'B' },
@@ -396,6 +404,7 @@ run_tui(struct stepper *st, const struct run_opts *o)
 	stepper_set_stop(st, tui_stop_flag());
 	lv.keyframe_every = o->keyframe_every;
 	lv.precision = o->precision;
+	lv.events_stored = o->events_stored;
 	if (o->record != NULL && src.record(src.ctx, o->record, why, sizeof why) != 0) {
 		fprintf(stderr, "drape: --record: %s\n", why);
 		source_live_free(&lv);
@@ -575,7 +584,8 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	int rc;
 
 	if (o->record != NULL && record_open(&rec, o->record, st, o->keyframe_every > 0 ?
-	    o->keyframe_every : record_default_keyframes(st), o->precision, &err) != 0) {
+	    o->keyframe_every : record_default_keyframes(st), o->precision, o->events_stored,
+	    &err) != 0) {
 		fprintf(stderr, "drape: --record: %s\n", err.msg);
 		return EXIT_RUNTIME;
 	}

@@ -46,7 +46,7 @@ keyframe(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 
 int
 record_open(struct recorder *rc, const char *path, const struct stepper *st,
-    long keyframe_every, double precision, struct drape_err *err)
+    long keyframe_every, double precision, bool events_stored, struct drape_err *err)
 {
 	const struct scene *sc = stepper_scene(st);
 	const struct cloth *cl = &stepper_network(st)->cl;
@@ -71,6 +71,7 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	m.triangles = (uint32_t)cl->ntri;
 	m.tri = cl->tri;
 	m.precision = precision;
+	m.events_stored = events_stored;
 	rc->rate = sc->output_rate;
 	rc->keyframe_every = keyframe_every;
 	rc->last_key = -1;
@@ -88,6 +89,22 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	return 0;
 }
 
+void
+record_step_of(const struct stepper *st, struct replay_step *s)
+{
+	struct stepper_report r;
+
+	stepper_report(st, &r);
+	memset(s, 0, sizeof *s);
+	s->step = r.step - 1;	/* the step just taken: its events carry this number */
+	s->t = r.t;
+	s->dt = r.dt;
+	if (r.collisions) {
+		s->col = *r.last;
+		s->nev = (long)r.nev;
+	}
+}
+
 int
 record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 {
@@ -96,14 +113,7 @@ record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err
 	long reached;
 
 	stepper_report(st, &r);
-	memset(&s, 0, sizeof s);
-	s.step = r.step - 1;	/* the step just taken: its events carry this number */
-	s.t = r.t;
-	s.dt = r.dt;
-	if (r.collisions) {
-		s.col = *r.last;
-		s.nev = (long)r.nev;
-	}
+	record_step_of(st, &s);
 	if (replay_write_step(&rc->w, &s, r.ev, err) != 0)
 		return -1;
 	if ((reached = frames_reached(rc, &r)) >= rc->next_frame) {

@@ -21,9 +21,15 @@ long record_default_keyframes(const struct stepper *st);
 
 /* Opens path and writes the scene, a keyframe and a frame of the current
  * state (step 0, or where a resumed run starts). precision: the frames'
- * grid step in m (replay.h's lossy frames), 0 for exact float32. */
+ * grid step in m (replay.h's lossy frames), 0 for exact float32.
+ * events_stored: every event written (--events stored), not only their
+ * digest, from which a reader recomputes them (replay_events.h). */
 int record_open(struct recorder *rc, const char *path, const struct stepper *st,
-    long keyframe_every, double precision, struct drape_err *err);
+    long keyframe_every, double precision, bool events_stored, struct drape_err *err);
+/* The record of the step st has just taken (its events: the report's),
+ * as the recorder writes it and a reader recomputing it compares. */
+void record_step_of(const struct stepper *st, struct replay_step *s);
+
 /* After each stepper_step that succeeded. */
 int record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err);
 /* A keyframe of the final state, then closes; frees rc even on error. */

@@ -338,7 +338,7 @@ write_chunk(struct replay_writer *w, uint32_t kind, uint64_t first_step, uint32_
 	j->first_step = first_step;
 	j->count = count;
 	j->level = level;
-	j->strategy = kind == REPLAY_STEPS ? STEPS_STRATEGY :
+	j->strategy = replay_is_steps(kind) ? STEPS_STRATEGY :
 	    replay_is_frames(kind) ? FRAMES_STRATEGY : Z_DEFAULT_STRATEGY;
 	j->key = key;
 	j->provisional = w->next_provisional;
@@ -449,6 +449,8 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	w->width = m->width >= 1 && m->width <= m->nodes ? m->width : m->nodes;
 	w->triangles = m->triangles;
 	w->keyframe_every = m->keyframe_every;
+	w->events_stored = m->events_stored;
+	w->digest = REPLAY_DIGEST_SEED;
 	w->precision = m->precision > 0 && isfinite(m->precision) ? m->precision : 0;
 	w->q_fits = true;
 	w->frames_per_chunk = FRAMES_PER_CHUNK;
@@ -762,10 +764,21 @@ pack_events(const struct contact_event *ev, size_t nev, uint64_t first_step, uns
 	}
 }
 
+/* A steps chunk's head: the events' count and a zero, then, in a digest
+ * chunk, the digest; the statistics' columns follow. */
+static size_t
+steps_head(uint32_t kind)
+{
+	return kind == REPLAY_STEPS_DIGEST ? 16 : 8;
+}
+
 static int
 flush_steps(struct replay_writer *w, bool keep, struct drape_err *err)
 {
-	size_t k = w->nsteps, nev = w->nev, i, len = 8 + 8 * NSTAT * k + EVENT_BYTES * nev;
+	uint32_t kind = w->events_stored ? REPLAY_STEPS : REPLAY_STEPS_DIGEST;
+	size_t k = w->nsteps, nev = w->nev, i, head = steps_head(kind);
+	size_t nstored = w->events_stored ? nev : 0;
+	size_t len = head + 8 * NSTAT * k + EVENT_BYTES * nstored;
 	uint64_t *words = NULL, *tmp64 = NULL, first;
 	uint32_t *tmp32 = NULL;
 	int rc = -1, c;
@@ -775,13 +788,15 @@ flush_steps(struct replay_writer *w, bool keep, struct drape_err *err)
 	first = (uint64_t)w->steps[0].step;
 	if (grow(&w->buf, &w->bufcap, len) != 0 ||
 	    (words = malloc(k * NSTAT * sizeof *words)) == NULL ||
-	    (tmp32 = malloc((nev + 1) * sizeof *tmp32)) == NULL ||
-	    (tmp64 = malloc((nev > k ? nev : k) * sizeof *tmp64)) == NULL) {
+	    (tmp32 = malloc((nstored + 1) * sizeof *tmp32)) == NULL ||
+	    (tmp64 = malloc((nstored > k ? nstored : k) * sizeof *tmp64)) == NULL) {
 		err_set(err, "%s: out of memory", w->path);
 		goto out;
 	}
 	put32(w->buf, (uint32_t)nev);
 	put32(w->buf + 4, 0);
+	if (!w->events_stored)
+		put64(w->buf + 8, w->digest);
 	for (i = 0; i < k; i++) {
 		uint64_t row[NSTAT];
 
@@ -790,11 +805,11 @@ flush_steps(struct replay_writer *w, bool keep, struct drape_err *err)
 			words[(size_t)c * k + i] = row[c];
 	}
 	for (c = 0; c < NSTAT; c++)
-		pack_col64(words + (size_t)c * k, k, w->buf + 8 + 8 * (size_t)c * k);
-	pack_events(w->ev, nev, first, w->buf + 8 + 8 * NSTAT * k, tmp32, tmp64);
+		pack_col64(words + (size_t)c * k, k, w->buf + head + 8 * (size_t)c * k);
+	if (w->events_stored)
+		pack_events(w->ev, nev, first, w->buf + head + 8 * NSTAT * k, tmp32, tmp64);
 	w->next_provisional = keep;
-	rc = write_chunk(w, REPLAY_STEPS, first, (uint32_t)k, w->buf, len, STEPS_LEVEL,
-	    err);
+	rc = write_chunk(w, kind, first, (uint32_t)k, w->buf, len, STEPS_LEVEL, err);
 out:
 	free(words);
 	free(tmp32);
@@ -802,8 +817,51 @@ out:
 	if (!keep) {
 		w->nsteps = 0;
 		w->nev = 0;
+		w->digest = REPLAY_DIGEST_SEED;
 	}
 	return rc;
+}
+
+/* Each event as 11 words (step; node and type; other and obstacle; then
+ * the eight doubles' bit patterns), each mixed in by a xor, a
+ * multiplication by an odd constant and a shift xor: each is a bijection
+ * of h, so one word changed changes the digest; a word at a time, not a
+ * byte (FNV-1a's), since the rk4 tablecloth digests 6 million events. */
+uint64_t
+replay_digest_events(uint64_t h, const struct contact_event *ev, size_t nev)
+{
+	size_t i, c;
+
+	for (i = 0; i < nev; i++) {
+		const struct contact_event *e = &ev[i];
+		uint64_t wd[EVENT_WORDS + 1];
+
+		wd[0] = (uint64_t)e->step;
+		wd[1] = (uint64_t)(uint32_t)e->node << 8 | (uint64_t)(uint8_t)e->type;
+		wd[2] = (uint64_t)(uint32_t)e->other << 32 | (uint64_t)(uint32_t)e->obstacle;
+		for (c = 2; c < EVENT_WORDS; c++)
+			wd[c + 1] = event_word(e, c);
+		for (c = 0; c < EVENT_WORDS + 1; c++) {
+			h ^= wd[c];
+			h *= UINT64_C(0x9e3779b97f4a7c15);
+			h ^= h >> 29;
+		}
+	}
+	return h;
+}
+
+bool
+replay_step_same(const struct replay_step *a, const struct replay_step *b)
+{
+	int k;
+
+	if (a->step != b->step || dbits(a->t) != dbits(b->t) || dbits(a->dt) != dbits(b->dt) ||
+	    a->nev != b->nev)
+		return false;
+	for (k = STAT_CONTACTS; k < STAT_COUNT; k++)
+		if (a->col.n[k] != b->col.n[k])
+			return false;
+	return true;
 }
 
 int
@@ -812,7 +870,9 @@ replay_write_step(struct replay_writer *w, const struct replay_step *s,
 {
 	size_t nev = (size_t)s->nev;
 
-	if (nev > 0 && w->nev + nev > w->evcap) {
+	if (!w->events_stored)
+		w->digest = replay_digest_events(w->digest, ev, nev);
+	else if (nev > 0 && w->nev + nev > w->evcap) {
 		size_t cap = w->evcap ? w->evcap : 1024;
 		struct contact_event *p;
 
@@ -825,10 +885,9 @@ replay_write_step(struct replay_writer *w, const struct replay_step *s,
 		w->ev = p;
 		w->evcap = cap;
 	}
-	if (nev > 0) {
+	if (nev > 0 && w->events_stored)
 		memcpy(w->ev + w->nev, ev, nev * sizeof *ev);
-		w->nev += nev;
-	}
+	w->nev += nev;
 	w->steps[w->nsteps++] = *s;
 	if (w->nsteps == w->steps_per_chunk || w->nev >= EVENTS_PER_CHUNK)
 		return flush_steps(w, false, err);
@@ -985,6 +1044,11 @@ check_chunk_header(const struct replay *r, const struct replay_chunk_header *h)
 		need = 8 + 8 * NSTAT * (uint64_t)h->count;
 		if (h->count < 1 || h->count > MAX_STEPS_CHUNK || raw < need ||
 		    (raw - need) % EVENT_BYTES != 0 || raw > MAX_STEPS_RAW)
+			return -1;
+		break;
+	case REPLAY_STEPS_DIGEST:
+		if (h->count < 1 || h->count > MAX_STEPS_CHUNK ||
+		    raw != 16 + 8 * NSTAT * (uint64_t)h->count)
 			return -1;
 		break;
 	case REPLAY_INDEX:
@@ -1345,7 +1409,7 @@ open_common(struct replay *r, const char *name, struct drape_err *err)
 			r->nframes += c->count;
 		else if (c->kind == REPLAY_KEYFRAME)
 			r->nkeyframes++;
-		else if (c->kind == REPLAY_STEPS) {
+		else if (replay_is_steps(c->kind)) {
 			r->nstep_chunks++;
 			if (c->first_step < (uint64_t)LONG_MAX - c->count &&
 			    (long)(c->first_step + c->count - 1) > r->last_step)
@@ -1563,7 +1627,7 @@ unpack_events(const unsigned char *in, size_t nev, uint64_t first_step, uint64_t
 static bool
 not_steps(const struct replay_chunk *c, struct drape_err *err)
 {
-	if (c->kind == REPLAY_STEPS && c->first_step <= (uint64_t)LONG_MAX - c->count)
+	if (replay_is_steps(c->kind) && c->first_step <= (uint64_t)LONG_MAX - c->count)
 		return false;
 	err_set(err, "chunk %zu: not steps", c->ordinal);
 	return true;
@@ -1576,6 +1640,10 @@ events_in(const struct replay_chunk *c, const unsigned char *p, size_t *nev,
     struct drape_err *err)
 {
 	*nev = get32(p);
+	/* a digest chunk's length is its head's (check_chunk_header); its
+	 * steps' counts are held to nev (decode_step_stats) */
+	if (c->kind == REPLAY_STEPS_DIGEST)
+		return 0;
 	if (8 + 8 * NSTAT * (uint64_t)c->count + EVENT_BYTES * (uint64_t)*nev == c->raw_len)
 		return 0;
 	err_set(err, "chunk %zu: %zu events do not fill its %u bytes", c->ordinal, *nev,
@@ -1598,7 +1666,7 @@ decode_step_stats(const struct replay_chunk *c, const unsigned char *p, size_t n
 		return -1;
 	}
 	for (col = 0; col < NSTAT; col++)
-		unpack_col64(p + 8 + 8 * col * k, k, words + col * k);
+		unpack_col64(p + steps_head(c->kind) + 8 * col * k, k, words + col * k);
 	for (j = 0; j < k; j++) {
 		uint64_t row[NSTAT];
 
@@ -1635,6 +1703,10 @@ replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
 	memset(ss, 0, sizeof *ss);
 	if (not_steps(c, err))
 		return -1;
+	if (c->kind != REPLAY_STEPS) {
+		err_set(err, "chunk %zu: its events are not stored, only their digest", c->ordinal);
+		return -1;
+	}
 	if (inflate_chunk(r, c, &p, err) != 0)
 		return -1;
 	if (events_in(c, p, &nev, err) != 0)
@@ -1678,12 +1750,16 @@ replay_read_step_stats(const struct replay *r, size_t i, struct replay_steps *ss
 	if (not_steps(c, err))
 		return -1;
 	/* check_chunk_header bounded raw_len from below by the head */
-	if (inflate_head(r, c, 8 + 8 * NSTAT * k, &p, err) != 0)
+	if (inflate_head(r, c, steps_head(c->kind) + 8 * NSTAT * k, &p, err) != 0)
 		return -1;
 	if (events_in(c, p, &nev, err) != 0)
 		goto out;
 	ss->count = k;
 	ss->nev = nev;
+	if (c->kind == REPLAY_STEPS_DIGEST) {
+		ss->has_digest = true;
+		ss->digest = get64(p + 8);
+	}
 	if ((ss->s = malloc(k * sizeof *ss->s)) == NULL) {
 		err_set(err, "chunk %zu: out of memory", c->ordinal);
 		goto out;

@@ -22,8 +22,9 @@
 
 /* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q);
  * version 3 writes its frames as chunks of the grid (REPLAY_FRAMES_GRID,
- * REPLAY_FRAMES_GRID_Q), and reads every kind. */
-#define REPLAY_VERSION 3
+ * REPLAY_FRAMES_GRID_Q); version 4 writes its steps' events as a digest
+ * (REPLAY_STEPS_DIGEST) unless asked to store them, and reads every kind. */
+#define REPLAY_VERSION 4
 
 enum replay_kind {
 	REPLAY_META = 1,	/* scene text and resolved options */
@@ -34,8 +35,16 @@ enum replay_kind {
 	REPLAY_FRAMES_Q = 6,	/* positions rounded to a grid (--precision) */
 	REPLAY_FRAMES_GRID = 7,	/* 2, predicted over the cloth's grid (version 3) */
 	REPLAY_FRAMES_GRID_Q = 8,	/* 6, the same way */
+	REPLAY_STEPS_DIGEST = 9,	/* 4 with a digest of the events, not them (version 4) */
 };
-#define REPLAY_KIND_MAX REPLAY_FRAMES_GRID_Q
+#define REPLAY_KIND_MAX REPLAY_STEPS_DIGEST
+
+/* Steps chunks, whether they store their events or a digest of them. */
+static inline int
+replay_is_steps(uint32_t kind)
+{
+	return kind == REPLAY_STEPS || kind == REPLAY_STEPS_DIGEST;
+}
 
 /* Frames chunks, exact or rounded: the same count, steps and times. */
 static inline int
@@ -99,6 +108,10 @@ struct replay_meta {
 	/* The writer's: frames rounded to this grid step (m), 0 for exact
 	 * float32. Not in the scene chunk: each frames chunk says its own. */
 	double precision;
+	/* The writer's: store every event (REPLAY_STEPS) rather than their
+	 * digest (REPLAY_STEPS_DIGEST), which a reader recomputes them
+	 * against (replay_events.h). */
+	bool events_stored;
 };
 
 /* Per step: what struct collide_stats says, and when. */
@@ -115,6 +128,7 @@ struct replay_writer {
 	uint32_t nodes, triangles;
 	uint32_t width;		/* the frames' grid (struct replay_meta) */
 	long keyframe_every;
+	bool events_stored;	/* struct replay_meta */
 	bool failed;		/* a write failed: stop writing */
 	/* pending frames: float32, and when precision > 0 the same rounded to
 	 * whole grid steps, while every value fits (q_fits) */
@@ -128,8 +142,9 @@ struct replay_writer {
 	/* pending steps */
 	struct replay_step *steps;
 	size_t nsteps, steps_per_chunk;
-	struct contact_event *ev;
+	struct contact_event *ev;	/* stored events only */
 	size_t nev, evcap;
+	uint64_t digest;	/* of the pending steps' events */
 	/* keyframes written, for the index */
 	uint64_t *kstep, *koff;
 	size_t nkey, keycap;
@@ -207,7 +222,26 @@ struct replay_steps {
 	size_t count, nev;
 	struct replay_step *s;
 	struct contact_event *ev;
+	bool has_digest;	/* a digest chunk: ev not stored, digest of them */
+	uint64_t digest;
 };
+
+/* The digest of a steps chunk's events (REPLAY_STEPS_DIGEST): h starts at
+ * REPLAY_DIGEST_SEED and takes each event's fields in turn, in the
+ * chunk's order. It tells a different computation from the same one; it
+ * is no defence against forgery. */
+#define REPLAY_DIGEST_SEED UINT64_C(0xcbf29ce484222325)
+uint64_t replay_digest_events(uint64_t h, const struct contact_event *ev, size_t nev);
+
+/* Whether two records of a step say it did the same: its time and next
+ * step, bit for bit, its events, contacts by type, corrections, passes,
+ * nodes put back and whether it was left unresolved. Not the broad
+ * phase's counters (its fills, pairs, tests, the hash's figures): they
+ * depend on what it kept from earlier steps, which a keyframe does not
+ * hold (the grid keeps its pairs while they hold: a run resumed from a
+ * keyframe fills again where the recorded one had kept them), and the
+ * same state gives the same contacts either way. */
+bool replay_step_same(const struct replay_step *a, const struct replay_step *b);
 
 struct replay {
 	FILE *f;		/* or mem, len */
@@ -239,13 +273,16 @@ int replay_read_frames(const struct replay *r, size_t i, struct replay_frames *f
     struct drape_err *err);
 int replay_read_keyframe(const struct replay *r, size_t i, struct replay_keyframe *kf,
     struct drape_err *err);
+/* A steps chunk with its events; a digest chunk is refused (its events
+ * are recomputed: replay_events.h). */
 int replay_read_steps(const struct replay *r, size_t i, struct replay_steps *ss,
     struct drape_err *err);
 void replay_frames_free(struct replay_frames *fr);
 void replay_keyframe_free(struct replay_keyframe *kf);
-/* A steps chunk's statistics only (ss->ev NULL, ss->nev its count): the
- * head of the chunk inflated, not its events, which are most of a run's
- * file. The events are checked when replay_read_steps reads them. */
+/* A steps chunk's statistics only (ss->ev NULL, ss->nev its count), of
+ * either kind (a digest chunk's digest with them): the head of the chunk
+ * inflated, not its events, which are most of a run's file. The events
+ * are checked when replay_read_steps reads them. */
 int replay_read_step_stats(const struct replay *r, size_t i, struct replay_steps *ss,
     struct drape_err *err);
 void replay_steps_free(struct replay_steps *ss);

@@ -17,6 +17,7 @@
 #include "forces.h"
 #include "network.h"
 #include "record.h"
+#include "replay_events.h"
 #include "scene.h"
 #include "stats.h"
 #include "vec3.h"
@@ -33,6 +34,9 @@ struct source_state {
 	/* NULL: v is the state's own; else how it was estimated (a replay's
 	 * frames hold positions only) */
 	const char *v_note;
+	/* NULL: the events shown are the run's; else why some of them are
+	 * not (a replay's digest that did not recompute: replay_events.h) */
+	const char *ev_note;
 };
 
 struct source_stats {
@@ -108,6 +112,7 @@ struct source_live {
 	long accel_step;	/* the step accel is of, -1: none */
 	long keyframe_every;	/* for recordings; 0: record_default_keyframes */
 	double precision;	/* for recordings: record_open's */
+	bool events_stored;	/* and its events_stored */
 	bool recording;
 	struct recorder rec;
 	char *rec_path;
@@ -146,6 +151,8 @@ struct source_replay {
 	 * the open, their events read again when needed (source_replay.c). */
 	struct replay_stepchunk *steps;
 	size_t nsteps;
+	struct replay_events re;	/* the steps' events, read or recomputed */
+	char ev_why[512];	/* why some events since the cursor last moved are unavailable */
 	struct replay_steps evs;	/* the chunk of the cursor's events */
 	size_t evs_of;		/* its index in steps, or SIZE_MAX for none */
 	struct evlog hist;	/* every event of the steps before hist_at */

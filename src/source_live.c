@@ -28,6 +28,7 @@ live_state(void *ctx, struct source_state *s)
 	s->integrator = integrator_name(s->sc->integrator);
 	stepper_energy(st, &s->energy);
 	s->v_note = NULL;
+	s->ev_note = NULL;
 }
 
 /* Closes the recording; 0, or -1 with a message. */
@@ -156,7 +157,8 @@ live_record(void *ctx, const char *path, char *why, size_t len)
 		return -1;
 	}
 	strcpy(lv->rec_path, path);
-	if (record_open(&lv->rec, path, lv->st, every, lv->precision, &err) != 0) {
+	if (record_open(&lv->rec, path, lv->st, every, lv->precision, lv->events_stored,
+	    &err) != 0) {
 		snprintf(why, len, "%s", err.msg);
 		free(lv->rec_path);
 		lv->rec_path = NULL;

@@ -146,7 +146,7 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 				goto oom;
 			}
 			replay_keyframe_free(&kf);
-		} else if (c->kind == REPLAY_STEPS) {
+		} else if (replay_is_steps(c->kind)) {
 			if (replay_read_step_stats(&sr->rp, i, &ss, &ignored) != 0) {
 				sr->nskipped++;
 				continue;
@@ -228,18 +228,32 @@ load_view(struct source_replay *sr, size_t i, double *x, double *v)
 	return 0;
 }
 
+/* Steps chunk i's events (of sr->rp.chunk) into ss: 0, or -1 if they
+ * no longer decode (out of memory) or are unavailable (then ev_why says
+ * why, for the screen). */
+static int
+read_events(struct source_replay *sr, size_t i, struct replay_steps *ss)
+{
+	struct drape_err err;
+	int rc = replay_events_read(&sr->re, i, ss, &err);
+
+	if (rc == REPLAY_EVENTS_UNAVAILABLE) {
+		snprintf(sr->ev_why, sizeof sr->ev_why, "%s", err.msg);
+		replay_steps_free(ss);
+	}
+	return rc == 0 ? 0 : -1;
+}
+
 /* Steps chunk j's events in sr->evs (the last chunk read is kept); 0, or
- * -1 if it no longer decodes (out of memory). */
+ * -1 if it no longer decodes or they are unavailable. */
 static int
 load_events(struct source_replay *sr, size_t j)
 {
-	struct drape_err ignored;
-
 	if (sr->evs_of == j)
 		return 0;
 	replay_steps_free(&sr->evs);
 	sr->evs_of = SIZE_MAX;
-	if (replay_read_steps(&sr->rp, sr->steps[j].chunk, &sr->evs, &ignored) != 0)
+	if (read_events(sr, sr->steps[j].chunk, &sr->evs) != 0)
 		return -1;
 	sr->evs_of = j;
 	return 0;
@@ -327,6 +341,7 @@ set_cursor(struct source_replay *sr, long step)
 	sr->cursor = step;
 	sr->cur = i;
 	sr->exact = vw->key;
+	sr->ev_why[0] = '\0';
 	sr->rec = find_step(sr, step - 1, &sr->ev, &sr->nev);
 	sr->step = step;
 	sr->t = sr->rec != NULL ? sr->rec->t : vw->t;
@@ -359,6 +374,7 @@ replay_state(void *ctx, struct source_state *s)
 	s->integrator = integrator_name(sr->sc.integrator);
 	forces_energy(&sr->net.fo, sr->t, s->x, s->v, &s->energy);
 	s->v_note = sr->exact ? NULL : "v: frame differences";
+	s->ev_note = sr->ev_why[0] != '\0' ? sr->ev_why : NULL;
 }
 
 /* The step of the next (dir > 0) or previous view after or before the
@@ -494,7 +510,6 @@ replay_position(void *ctx, struct source_position *p)
 static void
 advance_history(struct source_replay *sr, long to)
 {
-	struct drape_err ignored;
 	size_t j, n;
 
 	for (j = 0; j < sr->nsteps; j++) {
@@ -510,7 +525,7 @@ advance_history(struct source_replay *sr, long to)
 			evlog_copy(&sr->mark[j], &sr->hist);
 		if (j == sr->evs_of)
 			use = &sr->evs;
-		else if (replay_read_steps(&sr->rp, sc->chunk, &ss, &ignored) != 0)
+		else if (read_events(sr, sc->chunk, &ss) != 0)
 			continue;
 		/* a chunk's events are in step order */
 		for (n = 0; n < use->nev && use->ev[n].step < to; n++)
@@ -572,6 +587,7 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 		goto fail;
 	}
 	sr->built = true;
+	replay_events_init(&sr->re, &sr->rp, sr->file);
 	n3 = 3 * (size_t)sr->net.cl.n;
 	sr->evs_of = SIZE_MAX;
 	if ((sr->y = malloc(2 * n3 * sizeof *sr->y)) == NULL ||
@@ -617,6 +633,7 @@ source_replay_close(struct source_replay *sr)
 	size_t i;
 
 	if (sr->built) {
+		replay_events_free(&sr->re);
 		network_free(&sr->net);
 		scene_free(&sr->sc);
 	}

@@ -97,13 +97,19 @@ say(struct tui *ui, const char *fmt, ...)
 	va_end(ap);
 }
 
-/* A replay moved: the inspector's events are those before it. */
+/* A replay moved: the inspector's events are those before it (and the
+ * message line says so when some of them are unavailable). */
 static void
 rebuild_log(struct tui *ui)
 {
+	struct source_state s;
+
 	evlog_clear(&ui->log);
 	ui->src->history(ui->src->ctx, &ui->log);
 	ui->ended = ui->src->done(ui->src->ctx);
+	ui->src->state(ui->src->ctx, &s);
+	if (s.ev_note != NULL)
+		say(ui, "%s", s.ev_note);
 }
 
 static void

@@ -193,7 +193,7 @@ output_rate_out_of_range(void **state)
 	sc.output_rate = 1e300;
 	st = new_stepper(&sc);
 	snprintf(args, sizeof args, "%s/huge-rate.drr", dir);
-	if (record_open(&rec, args, st, 4, 0, &err) != 0)
+	if (record_open(&rec, args, st, 4, 0, false, &err) != 0)
 		fail_msg("%s", err.msg);
 	for (k = 0; k < 3; k++) {
 		step_once(st);
@@ -345,7 +345,7 @@ frames_flushed_on_wall_time(void **state)
 	parse_text(&sc, SIM "output_rate = 1e6\n" CLOTH);
 	st = new_stepper(&sc);
 	snprintf(path, sizeof path, "%s/clock.drr", dir);
-	if (record_open(&rec, path, st, 1000, 0, &err) != 0)
+	if (record_open(&rec, path, st, 1000, 0, false, &err) != 0)
 		fail_msg("%s", err.msg);
 	rec.w.clock = fake_clock;
 	fake_now = rec.w.last_flush = 100;
@@ -399,7 +399,7 @@ record_clocked(const char *name, bool flushing, size_t *len, long *mid)
 	    "[plane]\npoint = 0 -2 0 mm\n");
 	st = new_stepper(&sc);
 	snprintf(path, sizeof path, "%s/%s", dir, name);
-	if (record_open(&rec, path, st, 20, 0, &err) != 0)
+	if (record_open(&rec, path, st, 20, 0, false, &err) != 0)
 		fail_msg("%s", err.msg);
 	rec.w.clock = fake_clock;
 	fake_now = rec.w.last_flush = 100;

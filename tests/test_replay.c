@@ -7,10 +7,12 @@
  * SIGTERM mid-run, bad arguments, and the shipped replays. */
 #include <signal.h>
 #include <sys/stat.h>
+#include <zlib.h>
 
 #include "frame_codec.h"
 #include "record.h"
 #include "replay.h"
+#include "replay_events.h"
 #include "replay_run.h"
 #include "testutil.h"
 #include "runbin.h"
@@ -41,7 +43,16 @@ struct truth {
 	int n;
 };
 
-static char replay_path[700], lossy_path[700];
+static char replay_path[700], lossy_path[700], stored_path[700];
+
+/* Recordings store their events (--events stored) rather than a digest;
+ * their steps chunks hold this many steps at most (0: the writer's). */
+static bool rec_stored;
+static size_t rec_steps_per_chunk;
+
+/* The tiny run as round_trip recorded it: what every chunk recomputed
+ * from a file of it must give (read_all), or nothing. */
+static struct truth tiny_truth;
 
 static void
 path_in_dir(char *out, size_t len, const char *name)
@@ -89,8 +100,10 @@ record_text_p(struct truth *tr, const char *path, const char *text, int key_ever
 	tr->y = malloc(n6 * sizeof *tr->y);
 	assert_non_null(tr->y);
 	memcpy(tr->y, state_y(st), n6 * sizeof *tr->y);
-	if (record_open(&rec, path, st, key_every, precision, &err) != 0)
+	if (record_open(&rec, path, st, key_every, precision, rec_stored, &err) != 0)
 		fail_msg("record_open: %s", err.msg);
+	if (rec_steps_per_chunk > 0)
+		rec.w.steps_per_chunk = rec_steps_per_chunk;
 	while (!stepper_done(st)) {
 		if (stepper_step(st, &bl) != STEP_OK)
 			fail_msg("blow-up: %s", bl.why);
@@ -247,29 +260,45 @@ events_equal(const struct contact_event *a, const struct contact_event *b)
 	    memcmp(&a->vn_after, &b->vn_after, sizeof a->vn_after) == 0;
 }
 
+/* Steps chunk i's events, stored or recomputed: they must be there. */
 static void
-round_trip(void **state)
+chunk_events(struct replay_events *re, size_t i, struct replay_steps *ss)
 {
-	struct truth tr;
+	struct drape_err err;
+	int rc = replay_events_read(re, i, ss, &err);
+
+	if (rc != 0)
+		fail_msg("chunk %zu: %d: %s", i, rc, err.msg);
+}
+
+/* The tiny run recorded with its events stored and with their digest:
+ * the same statistics and events read back from either, the stored kind
+ * and the digest kind each where it belongs. */
+static void
+round_trip_of(const char *path, bool stored, struct truth *tr)
+{
 	struct replay r;
+	struct replay_events re;
 	struct drape_err err;
 	size_t i, j, n6, nev = 0, nkey = 0, nframes = 0;
 	long steps = 0;
 
-	(void)state;
-	path_in_dir(replay_path, sizeof replay_path, "tiny.drr");
-	record_tiny(&tr, replay_path);
-	assert_true(tr.nev > 100);	/* the floor is hit */
-	n6 = 6 * (size_t)tr.n;
-	if (replay_open(&r, replay_path, &err) != 0)
+	rec_stored = stored;
+	record_tiny(tr, path);
+	rec_stored = false;
+	assert_true(tr->nev > 100);	/* the floor is hit */
+	n6 = 6 * (size_t)tr->n;
+	if (replay_open(&r, path, &err) != 0)
 		fail_msg("replay_open: %s", err.msg);
+	replay_events_init(&re, &r, path);
+	assert_int_equal(r.hdr.version, 4);
 	assert_true(r.hdr.flags & REPLAY_CLOSED);
 	assert_int_equal(r.nbad, 0);
 	assert_false(r.cut);
-	assert_int_equal(r.meta.nodes, tr.n);
+	assert_int_equal(r.meta.nodes, tr->n);
 	assert_string_equal(r.meta.text, tiny_scene);
 	assert_string_equal(r.meta.name, "tiny");
-	assert_int_equal(r.last_step, tr.nsteps - 1);
+	assert_int_equal(r.last_step, tr->nsteps - 1);
 	/* the header points at the index chunk, from the file's start */
 	assert_int_equal(r.chunk[r.nchunks - 1].kind, REPLAY_INDEX);
 	assert_int_equal(r.hdr.index_offset, r.chunk[r.nchunks - 1].offset);
@@ -281,9 +310,9 @@ round_trip(void **state)
 
 			if (replay_read_keyframe(&r, i, &kf, &err) != 0)
 				fail_msg("%s", err.msg);
-			assert_true(kf.step >= 0 && kf.step <= tr.nsteps);
-			assert_true(kf.step % KEY_EVERY == 0 || kf.step == tr.nsteps);
-			assert_memory_equal(kf.y, tr.y + (size_t)kf.step * n6, n6 * sizeof *kf.y);
+			assert_true(kf.step >= 0 && kf.step <= tr->nsteps);
+			assert_true(kf.step % KEY_EVERY == 0 || kf.step == tr->nsteps);
+			assert_memory_equal(kf.y, tr->y + (size_t)kf.step * n6, n6 * sizeof *kf.y);
 			replay_keyframe_free(&kf);
 			nkey++;
 		} else if (c->kind == REPLAY_FRAMES_GRID) {
@@ -292,7 +321,7 @@ round_trip(void **state)
 			if (replay_read_frames(&r, i, &fr, &err) != 0)
 				fail_msg("%s", err.msg);
 			for (j = 0; j < fr.count; j++) {
-				const double *y = tr.y + (size_t)fr.step[j] * n6;
+				const double *y = tr->y + (size_t)fr.step[j] * n6;
 				size_t k;
 
 				for (k = 0; k < n6 / 2; k++) {
@@ -305,13 +334,15 @@ round_trip(void **state)
 				nframes++;
 			}
 			replay_frames_free(&fr);
-		} else if (c->kind == REPLAY_STEPS) {
+		} else if (replay_is_steps(c->kind)) {
 			struct replay_steps ss;
 
-			if (replay_read_steps(&r, i, &ss, &err) != 0)
-				fail_msg("%s", err.msg);
+			assert_int_equal(c->kind, stored ? REPLAY_STEPS : REPLAY_STEPS_DIGEST);
+			chunk_events(&re, i, &ss);
+			assert_int_equal(ss.has_digest, !stored);
 			for (j = 0; j < ss.count; j++) {
-				const struct collide_stats *a = &ss.s[j].col, *b = &tr.st[ss.s[j].step];
+				const struct collide_stats *a = &ss.s[j].col;
+				const struct collide_stats *b = &tr->st[ss.s[j].step];
 
 				assert_int_equal(ss.s[j].step, steps);
 				assert_memory_equal(a->n, b->n, sizeof a->n);
@@ -320,19 +351,39 @@ round_trip(void **state)
 				steps++;
 			}
 			for (j = 0; j < ss.nev; j++)
-				assert_true(events_equal(&ss.ev[j], &tr.ev[nev + j]));
+				assert_true(events_equal(&ss.ev[j], &tr->ev[nev + j]));
 			nev += ss.nev;
 			replay_steps_free(&ss);
 		}
 	}
-	assert_int_equal(steps, tr.nsteps);
-	assert_int_equal(nev, tr.nev);
+	assert_int_equal(steps, tr->nsteps);
+	assert_int_equal(nev, tr->nev);
 	assert_int_equal(nkey, r.nkeyframes);
-	assert_int_equal(nkey, (size_t)(tr.nsteps / KEY_EVERY) + 1 + (tr.nsteps % KEY_EVERY != 0));
+	assert_int_equal(nkey,
+	    (size_t)(tr->nsteps / KEY_EVERY) + 1 + (tr->nsteps % KEY_EVERY != 0));
 	assert_int_equal(nframes, r.nframes);
 	assert_int_equal(nframes, 6);	/* 0, 5, ..., 25 ms */
+	/* read in order, the chunks were stepped through once */
+	assert_true(re.steps <= (stored ? 0 : tr->nsteps));
+	replay_events_free(&re);
 	replay_close(&r);
-	truth_free(&tr);
+}
+
+static void
+round_trip(void **state)
+{
+	struct truth stored;
+
+	(void)state;
+	path_in_dir(replay_path, sizeof replay_path, "tiny.drr");
+	path_in_dir(stored_path, sizeof stored_path, "tiny-stored.drr");
+	/* chunks of 24 steps: several, some across a keyframe (every 40) */
+	rec_steps_per_chunk = 24;
+	round_trip_of(replay_path, false, &tiny_truth);
+	round_trip_of(stored_path, true, &stored);
+	rec_steps_per_chunk = 0;
+	assert_int_equal(stored.nev, tiny_truth.nev);
+	truth_free(&stored);
 }
 
 /*
@@ -349,6 +400,7 @@ lossy_round_trip(void **state)
 	static const double grid = 20e-6;
 	struct truth tr, far;
 	struct replay r;
+	struct replay_events re;
 	struct drape_err err;
 	size_t i, j, k, n3, frames = 0, nev = 0, lossy = 0;
 	double worst = 0;
@@ -357,18 +409,20 @@ lossy_round_trip(void **state)
 
 	(void)state;
 	path_in_dir(lossy_path, sizeof lossy_path, "tiny-lossy.drr");
+	rec_steps_per_chunk = 24;
 	record_text_p(&tr, lossy_path, tiny_scene, KEY_EVERY, grid);
+	rec_steps_per_chunk = 0;
 	if (replay_open(&r, lossy_path, &err) != 0)
 		fail_msg("replay_open: %s", err.msg);
-	assert_int_equal(r.hdr.version, 3);
+	assert_int_equal(r.hdr.version, 4);
+	replay_events_init(&re, &r, lossy_path);
 	n3 = 3 * (size_t)tr.n;
 	for (i = 0; i < r.nchunks; i++) {
 		struct replay_frames fr;
 		struct replay_steps ss;
 
-		if (r.chunk[i].kind == REPLAY_STEPS) {
-			if (replay_read_steps(&r, i, &ss, &err) != 0)
-				fail_msg("%s", err.msg);
+		if (replay_is_steps(r.chunk[i].kind)) {
+			chunk_events(&re, i, &ss);
 			for (j = 0; j < ss.nev; j++)
 				assert_true(events_equal(&ss.ev[j], &tr.ev[nev + j]));
 			nev += ss.nev;
@@ -402,6 +456,7 @@ lossy_round_trip(void **state)
 	assert_true(lossy > 0);
 	assert_true(worst > grid / 20);	/* it did round */
 	assert_int_equal(nev, tr.nev);
+	replay_events_free(&re);
 	replay_close(&r);
 	truth_free(&tr);
 
@@ -431,13 +486,49 @@ lossy_round_trip(void **state)
 	truth_free(&far);
 }
 
-/* Every chunk of a file read back: no crash, and each one decodes. */
+/* A digest chunk's events recomputed: either unavailable, or exactly
+ * tr's events of its steps (never wrong). */
 static void
-read_all(const struct replay *r)
+check_recomputed(struct replay_events *re, size_t i, const struct truth *tr, size_t *nok,
+    size_t *nout)
 {
+	const struct replay_chunk *c = &re->rp->chunk[i];
+	struct replay_steps ss;
+	struct drape_err err;
+	size_t at = 0, j;
+	int rc = replay_events_read(re, i, &ss, &err);
+
+	if (rc == REPLAY_EVENTS_UNAVAILABLE) {
+		assert_null(ss.ev);
+		assert_non_null(strstr(err.msg, "unavailable"));
+		replay_steps_free(&ss);
+		(*nout)++;
+		return;
+	}
+	if (rc != 0)
+		fail_msg("chunk %zu: %s", i, err.msg);
+	while (at < tr->nev && tr->ev[at].step < (long)c->first_step)
+		at++;
+	assert_true(at + ss.nev <= tr->nev);
+	for (j = 0; j < ss.nev; j++)
+		assert_true(events_equal(&ss.ev[j], &tr->ev[at + j]));
+	assert_true(at + ss.nev == tr->nev ||
+	    tr->ev[at + ss.nev].step >= (long)(c->first_step + c->count));
+	replay_steps_free(&ss);
+	(*nok)++;
+}
+
+/* Every chunk of a file read back: no crash, and each one decodes; with
+ * tr (the run it is of), digest chunks' events recomputed, each exact or
+ * unavailable. */
+static void
+read_all_of(const struct replay *r, const struct truth *tr, size_t *nok, size_t *nout)
+{
+	struct replay_events re;
 	struct drape_err err;
 	size_t i;
 
+	replay_events_init(&re, r, "hostile.drr");
 	for (i = 0; i < r->nchunks; i++) {
 		struct replay_frames fr;
 		struct replay_keyframe kf;
@@ -469,18 +560,44 @@ read_all(const struct replay *r)
 			}
 			replay_steps_free(&ss);
 		}
+		if (r->chunk[i].kind == REPLAY_STEPS_DIGEST) {
+			struct replay_steps head;
+
+			/* statistics and digest; the events are not there to read */
+			if ((rc = replay_read_step_stats(r, i, &head, &err)) == 0) {
+				assert_true(head.has_digest);
+				assert_null(head.ev);
+				replay_steps_free(&head);
+				assert_int_equal(replay_read_steps(r, i, &head, &err), -1);
+				assert_non_null(strstr(err.msg, "not stored"));
+				assert_null(head.s);
+				if (tr != NULL)
+					check_recomputed(&re, i, tr, nok, nout);
+			}
+		}
 		if (rc != 0)
 			fail_msg("chunk %zu: %s", i, err.msg);
 	}
+	replay_events_free(&re);
 }
 
+static void
+read_all(const struct replay *r, const struct truth *tr)
+{
+	size_t nok = 0, nout = 0;
+
+	read_all_of(r, tr, &nok, &nout);
+}
+
+/* path (a file of the tiny run) cut at every byte; the digest chunks
+ * recomputed each time the whole chunks change. */
 static void
 cut_file(const char *path)
 {
 	struct replay whole, r;
 	struct drape_err err;
 	unsigned char *buf;
-	size_t len, L, i, *ends, nends, meta_end;
+	size_t len, L, i, *ends, nends, meta_end, last_whole = 0, nok = 0, nout = 0;
 
 	buf = slurp_file(path, &len);
 	if (replay_open_mem(&whole, buf, len, &err) != 0)
@@ -507,9 +624,14 @@ cut_file(const char *path)
 		assert_int_equal(r.nchunks, whole_chunks);
 		assert_int_equal(r.nbad, 0);
 		assert_int_equal(r.cut, L != ends[whole_chunks - 1]);
-		read_all(&r);
+		read_all_of(&r, whole_chunks != last_whole ? &tiny_truth : NULL, &nok, &nout);
+		last_whole = whole_chunks;
 		replay_close(&r);
 	}
+	/* whole chunks of a cut file recompute as recorded: the keyframe
+	 * before a steps chunk is written before it */
+	assert_int_equal(nout, 0);
+	print_message("%s: cut at every byte: digest chunks recomputed %zu times\n", path, nok);
 	replay_close(&whole);
 	free(ends);
 	free(buf);
@@ -522,6 +644,7 @@ cut_at_every_byte(void **state)
 	(void)state;
 	cut_file(replay_path);
 	cut_file(lossy_path);
+	cut_file(stored_path);
 }
 
 static void
@@ -530,7 +653,7 @@ flip_file(const char *path)
 	struct replay whole, r;
 	struct drape_err err;
 	unsigned char *buf, *bad;
-	size_t len, i, j, at, flips = 0;
+	size_t len, i, j, at, flips = 0, nok = 0, nout = 0;
 
 	buf = slurp_file(path, &len);
 	bad = malloc(len);
@@ -560,11 +683,13 @@ flip_file(const char *path)
 			assert_true(r.nbad == 1 || (r.cut && i == whole.nchunks - 1));
 			for (j = 0; j < r.nchunks; j++)
 				assert_true(r.chunk[j].offset != c->offset);
-			read_all(&r);
+			read_all_of(&r, &tiny_truth, &nok, &nout);
 			replay_close(&r);
 		}
 	}
 	assert_true(flips > 100);
+	print_message("%s: %zu bit flips: digest chunks recomputed %zu times, unavailable %zu "
+	    "times\n", path, flips, nok, nout);
 	/* a damaged keyframe is passed over for the one before it */
 	{
 		long last = replay_find_keyframe(&whole, -1), before;
@@ -590,6 +715,225 @@ bit_flips(void **state)
 	(void)state;
 	flip_file(replay_path);
 	flip_file(lossy_path);
+	flip_file(stored_path);
+}
+
+/* buf (len bytes) with chunk c's payload inflated, changed by change,
+ * deflated again and its CRC made again: a file whose every chunk is
+ * intact and says something else. Returns the new file (*out_len). */
+static unsigned char *
+rewrite_chunk(const unsigned char *buf, size_t len, const struct replay_chunk *c,
+    void (*change)(unsigned char *raw, size_t n, void *ctx), void *ctx, size_t *out_len)
+{
+	struct replay_chunk_header h;
+	size_t at = (size_t)c->offset, rest = at + sizeof h + c->comp_len;
+	uLongf raw_len = c->raw_len, z_len = compressBound(c->raw_len);
+	unsigned char *raw = malloc(c->raw_len + 1), *out = malloc(len + z_len + 64);
+	uint32_t crc;
+
+	assert_true(raw != NULL && out != NULL);
+	memcpy(&h, buf + at, sizeof h);
+	assert_int_equal(uncompress(raw, &raw_len, buf + at + sizeof h, c->comp_len), Z_OK);
+	assert_int_equal(raw_len, c->raw_len);
+	change(raw, raw_len, ctx);
+	memcpy(out, buf, at);
+	assert_int_equal(compress2(out + at + sizeof h, &z_len, raw, raw_len, 6), Z_OK);
+	h.comp_len = (uint32_t)z_len;
+	crc = (uint32_t)crc32(crc32(0, Z_NULL, 0), (const Bytef *)&h,
+	    offsetof(struct replay_chunk_header, crc));
+	h.crc = (uint32_t)crc32(crc, out + at + sizeof h, (uInt)z_len);
+	memcpy(out + at, &h, sizeof h);
+	memcpy(out + at + sizeof h + z_len, buf + rest, len - rest);
+	*out_len = at + sizeof h + z_len + len - rest;
+	free(raw);
+	return out;
+}
+
+/* A digest chunk's digest, one bit of it flipped. */
+static void
+flip_digest(unsigned char *raw, size_t n, void *ctx)
+{
+	(void)ctx;
+	assert_true(n > 16);
+	raw[8] ^= 1;
+}
+
+/* A keyframe 0.1 mm off in one coordinate, its hash made to match:
+ * restore takes it, and the run from it is another. */
+static void
+move_keyframe(unsigned char *raw, size_t n, void *ctx)
+{
+	const struct replay_keyframe *kf = ctx;
+	size_t n6 = (n - 32) / 8;
+	double *y = malloc(n6 * sizeof *y);
+	uint64_t hash;
+
+	assert_non_null(y);
+	memcpy(y, kf->y, n6 * sizeof *y);
+	y[1] += 1e-4;
+	hash = stepper_state_hash(y, n6 / 6, kf->t);
+	memcpy(raw + 24, &hash, 8);
+	/* the doubles are byte-shuffled: byte b of double j at b * n6 + j */
+	for (size_t b = 0; b < 8; b++)
+		raw[32 + b * n6 + 1] = ((const unsigned char *)&y[1])[b];
+	free(y);
+}
+
+/* The events of every steps chunk of the file buf read in order, against
+ * tr: how many chunks were exact and how many unavailable (never wrong);
+ * *why gets the first unavailable one's message. */
+static void
+read_tampered(const unsigned char *buf, size_t len, const struct truth *tr, size_t *nok,
+    size_t *nout, char *why, size_t whylen)
+{
+	struct replay r;
+	struct replay_events re;
+	struct drape_err err;
+	size_t i;
+
+	*nok = *nout = 0;
+	if (replay_open_mem(&r, buf, len, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(r.nbad, 0);
+	assert_false(r.cut);
+	replay_events_init(&re, &r, "tampered.drr");
+	why[0] = '\0';
+	for (i = 0; i < r.nchunks; i++) {
+		size_t before = *nout;
+		struct replay_steps ss;
+
+		if (r.chunk[i].kind != REPLAY_STEPS_DIGEST)
+			continue;
+		check_recomputed(&re, i, tr, nok, nout);
+		if (*nout > before && why[0] == '\0') {
+			/* the same again, for its message */
+			replay_events_free(&re);
+			replay_events_init(&re, &r, "tampered.drr");
+			assert_int_equal(replay_events_read(&re, i, &ss, &err),
+			    REPLAY_EVENTS_UNAVAILABLE);
+			replay_steps_free(&ss);
+			snprintf(why, whylen, "%s", err.msg);
+		}
+	}
+	replay_events_free(&re);
+	replay_close(&r);
+}
+
+/*
+ * A digest chunk whose events do not recompute as recorded gives
+ * "unavailable", never other events: its digest changed (and its CRC
+ * made again); a keyframe moved 0.1 mm with its hash made to match, so
+ * that the run resumed from it is another (the chunks after it, and the
+ * chunk before it, which steps onto it, are unavailable; those before
+ * are exact). drape events lists the rest, names the steps and exits 1.
+ */
+static void
+digest_mismatch(void **state)
+{
+	struct truth tr;
+	struct replay r;
+	struct drape_err err;
+	struct replay_keyframe kf;
+	struct result res;
+	unsigned char *buf, *bad;
+	size_t len, blen, i, nok, nout, ndigest = 0, second = 0;
+	long key = -1, lo, hi;
+	char path[700], why[600], args[1600], steps[100];
+
+	(void)state;
+	path_in_dir(path, sizeof path, "tamper.drr");
+	rec_steps_per_chunk = 24;
+	record_tiny(&tr, path);
+	rec_steps_per_chunk = 0;
+	buf = slurp_file(path, &len);
+	if (replay_open_mem(&r, buf, len, &err) != 0)
+		fail_msg("%s", err.msg);
+	/* the chunk tampered with: the first with events after the first */
+	for (i = 0; i < r.nchunks; i++) {
+		struct replay_steps ss;
+
+		if (r.chunk[i].kind == REPLAY_STEPS_DIGEST && ++ndigest >= 2 && second == 0) {
+			assert_int_equal(replay_read_step_stats(&r, i, &ss, &err), 0);
+			if (ss.nev > 0)
+				second = i;
+			replay_steps_free(&ss);
+		}
+		if (r.chunk[i].kind == REPLAY_KEYFRAME && r.chunk[i].first_step == KEY_EVERY)
+			key = (long)i;
+	}
+	assert_true(ndigest >= 4 && second > 0 && key > 0);
+	lo = (long)r.chunk[second].first_step;
+	hi = lo + (long)r.chunk[second].count - 1;
+	snprintf(steps, sizeof steps, "the events of steps %ld to %ld are unavailable", lo, hi);
+	read_tampered(buf, len, &tr, &nok, &nout, why, sizeof why);
+	assert_int_equal(nok, ndigest);
+	assert_int_equal(nout, 0);
+
+	/* the second chunk's digest */
+	bad = rewrite_chunk(buf, len, &r.chunk[second], flip_digest, NULL, &blen);
+	read_tampered(bad, blen, &tr, &nok, &nout, why, sizeof why);
+	print_message("digest flipped: %zu chunks exact, %zu unavailable: %s\n", nok, nout, why);
+	assert_int_equal(nout, 1);
+	assert_int_equal(nok, ndigest - 1);
+	assert_non_null(strstr(why, steps));
+	assert_non_null(strstr(why, "digest differs"));
+	dir_write("tamper-digest.drr", bad, blen);
+	free(bad);
+	/* drape events: every other event listed, those steps named */
+	snprintf(args, sizeof args, "'%s' events '%s/tamper-digest.drr' >'%s/ev-t.tsv' "
+	    "2>'%s/ev-t.err'", DRAPE, dir, dir, dir);
+	i = (size_t)system(args);
+	assert_true(WIFEXITED((int)i) && WEXITSTATUS((int)i) == 1);
+	snprintf(args, sizeof args, "%s/ev-t.err", dir);
+	slurp(args, res.err, sizeof res.err);
+	assert_non_null(strstr(res.err, steps));
+	assert_non_null(strstr(res.err, "tamper-digest.drr: the events of steps"));
+	assert_non_null(strstr(res.err, "unavailable: the events recomputed are not the recorded"));
+	{
+		size_t n = 0, inside = 0, lines = 0, tlen;
+		char *text, *line, *save = NULL;
+
+		snprintf(args, sizeof args, "%s/ev-t.tsv", dir);
+		text = (char *)slurp_file(args, &tlen);
+		text = realloc(text, tlen + 1);
+		assert_non_null(text);
+		text[tlen] = '\0';
+		for (line = strtok_r(text, "\n", &save); line != NULL;
+		    line = strtok_r(NULL, "\n", &save), lines++) {
+			long step;
+
+			if (lines > 0 && sscanf(line, "%ld", &step) == 1)
+				inside += step >= lo && step <= hi;
+		}
+		free(text);
+		for (i = 0; i < tr.nev; i++)
+			n += tr.ev[i].step < lo || tr.ev[i].step > hi;
+		assert_int_equal(inside, 0);
+		assert_int_equal(lines, 1 + n);
+		assert_true(n > 0 && n < tr.nev);
+	}
+	/* info counts the events from the statistics: all of them */
+	snprintf(args, sizeof args, "info '%s/tamper-digest.drr'", dir);
+	drape(&res, args);
+	assert_int_equal(res.status, 0);
+	snprintf(why, sizeof why, "events       %zu (a digest", tr.nev);
+	assert_non_null(strstr(res.out, why));
+
+	/* the keyframe at step 40 */
+	if (replay_read_keyframe(&r, (size_t)key, &kf, &err) != 0)
+		fail_msg("%s", err.msg);
+	bad = rewrite_chunk(buf, len, &r.chunk[key], move_keyframe, &kf, &blen);
+	replay_keyframe_free(&kf);
+	read_tampered(bad, blen, &tr, &nok, &nout, why, sizeof why);
+	print_message("keyframe moved: %zu chunks exact, %zu unavailable: %s\n", nok, nout, why);
+	assert_true(nok >= 1 && nout >= 2);
+	/* steps 24 to 47 step onto the keyframe at 40 from the one at 0 */
+	assert_non_null(strstr(why, "the events of steps 24 to 47 are unavailable: the state "
+	    "recomputed at step 40 is not the keyframe's"));
+	free(bad);
+	replay_close(&r);
+	free(buf);
+	truth_free(&tr);
 }
 
 /* The continued run from each keyframe ends with the recorded run's hash. */
@@ -827,6 +1171,7 @@ cli_events_node(void **state)
 {
 	struct result r;
 	struct replay rp;
+	struct replay_events re;
 	struct drape_err err;
 	char args[2000], *line, *save = NULL;
 	size_t i, e, expect = 0, got = 0;
@@ -835,16 +1180,18 @@ cli_events_node(void **state)
 	(void)state;
 	if (replay_open(&rp, replay_path, &err) != 0)
 		fail_msg("%s", err.msg);
+	replay_events_init(&re, &rp, replay_path);
 	for (i = 0; i < rp.nchunks; i++) {
 		struct replay_steps ss;
 
-		if (rp.chunk[i].kind != REPLAY_STEPS)
+		if (!replay_is_steps(rp.chunk[i].kind))
 			continue;
-		assert_int_equal(replay_read_steps(&rp, i, &ss, &err), 0);
+		chunk_events(&re, i, &ss);
 		for (e = 0; e < ss.nev; e++)
 			expect += ss.ev[e].node == node;
 		replay_steps_free(&ss);
 	}
+	replay_events_free(&re);
 	replay_close(&rp);
 	assert_true(expect > 10);
 	/* the options may follow the file */
@@ -1032,7 +1379,7 @@ cli_precision(void **state)
 	snprintf(args, sizeof args, "info '%s'", out);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
-	assert_non_null(strstr(r.out, "(version 3, closed cleanly)"));
+	assert_non_null(strstr(r.out, "(version 4, closed cleanly)"));
 	assert_non_null(strstr(r.out, "6 at 200 per second, rounded to 1e-05 m (within 5e-06 m"));
 	snprintf(args, sizeof args, "export --pc2 '%s/lossy.pc2' '%s'", dir, out);
 	drape(&r, args);
@@ -1040,7 +1387,7 @@ cli_precision(void **state)
 	/* exact frames: no rounding said */
 	snprintf(args, sizeof args, "info '%s'", replay_path);
 	drape(&r, args);
-	assert_non_null(strstr(r.out, "(version 3, closed cleanly)"));
+	assert_non_null(strstr(r.out, "(version 4, closed cleanly)"));
 	assert_null(strstr(r.out, "rounded"));
 	for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
 		snprintf(args, sizeof args, "run --headless --precision '%s' --record '%s/bad.drr' '%s'",
@@ -1137,6 +1484,62 @@ cli_bad(void **state)
 	assert_non_null(strstr(r.out, "not closed"));
 }
 
+/*
+ * drape events on a run recorded with its events' digest (the default)
+ * prints, byte for byte, what it prints on the same run recorded with
+ * --events stored: the tablecloth's first 0.6 s (the fast path) and the
+ * strip's first second; info says how the events are held; --events
+ * takes only stored or digest.
+ */
+static void
+cli_events_digest_as_stored(void **state)
+{
+	static const char *const runs[][2] = { { "tablecloth", "0.6" }, { "strip", "1" } };
+	struct result r;
+	char args[3000], a[700], b[700];
+	unsigned char *ta, *tb;
+	size_t i, la, lb;
+
+	(void)state;
+	for (i = 0; i < 2; i++) {
+		snprintf(args, sizeof args, "run --headless --until %s --record '%s/%s-d.drr' "
+		    "'%s/scenes/%s.scene'", runs[i][1], dir, runs[i][0], TOP_SRCDIR, runs[i][0]);
+		drape(&r, args);
+		assert_int_equal(r.status, 0);
+		snprintf(args, sizeof args, "run --headless --until %s --events stored --record "
+		    "'%s/%s-s.drr' '%s/scenes/%s.scene'", runs[i][1], dir, runs[i][0], TOP_SRCDIR,
+		    runs[i][0]);
+		drape(&r, args);
+		assert_int_equal(r.status, 0);
+		snprintf(args, sizeof args, "'%s' events '%s/%s-d.drr' >'%s/ev-d.tsv' && "
+		    "'%s' events '%s/%s-s.drr' >'%s/ev-s.tsv'", DRAPE, dir, runs[i][0], dir, DRAPE,
+		    dir, runs[i][0], dir);
+		assert_int_equal(system(args), 0);
+		path_in_dir(a, sizeof a, "ev-d.tsv");
+		path_in_dir(b, sizeof b, "ev-s.tsv");
+		ta = slurp_file(a, &la);
+		tb = slurp_file(b, &lb);
+		assert_int_equal(la, lb);
+		assert_memory_equal(ta, tb, la);
+		assert_true(la > 100000);	/* thousands of events */
+		print_message("%s to %s s: drape events gives the same %zu bytes from either\n",
+		    runs[i][0], runs[i][1], la);
+		free(ta);
+		free(tb);
+		snprintf(args, sizeof args, "info '%s/%s-d.drr'", dir, runs[i][0]);
+		drape(&r, args);
+		assert_non_null(strstr(r.out, " (a digest: recomputed when read)\n"));
+		snprintf(args, sizeof args, "info '%s/%s-s.drr'", dir, runs[i][0]);
+		drape(&r, args);
+		assert_non_null(strstr(r.out, " (stored)\n"));
+	}
+	snprintf(args, sizeof args, "run --headless --events all --record '%s/x.drr' "
+	    "'%s/scenes/strip.scene'", dir, TOP_SRCDIR);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--events 'all': expected stored or digest"));
+}
+
 /* The replays that ship still open, whole, with the current reader. */
 static void
 shipped_replays(void **state)
@@ -1156,7 +1559,7 @@ shipped_replays(void **state)
 		assert_false(r.cut);
 		assert_true(r.hdr.flags & REPLAY_CLOSED);
 		assert_true(r.nframes > 10 && r.nkeyframes >= 2);
-		read_all(&r);
+		read_all(&r, NULL);
 		replay_close(&r);
 	}
 }
@@ -1177,6 +1580,7 @@ shipped_runs_events_equal_live(void **state)
 		char path[700], *text;
 		struct truth tr;
 		struct replay r;
+		struct replay_events re;
 		struct drape_err err;
 		size_t len, c, j, nev = 0;
 		long steps = 0;
@@ -1191,13 +1595,15 @@ shipped_runs_events_equal_live(void **state)
 		free(text);
 		if (replay_open(&r, path, &err) != 0)
 			fail_msg("%s", err.msg);
+		replay_events_init(&re, &r, path);
 		for (c = 0; c < r.nchunks; c++) {
 			struct replay_steps ss;
 
-			if (r.chunk[c].kind != REPLAY_STEPS)
+			if (!replay_is_steps(r.chunk[c].kind))
 				continue;
-			if (replay_read_steps(&r, c, &ss, &err) != 0)
-				fail_msg("%s", err.msg);
+			/* a digest recomputed, in order: the run stepped once */
+			assert_int_equal(r.chunk[c].kind, REPLAY_STEPS_DIGEST);
+			chunk_events(&re, c, &ss);
 			for (j = 0; j < ss.count; j++) {
 				assert_int_equal(ss.s[j].step, steps);
 				assert_memory_equal(ss.s[j].col.n, tr.st[steps].n, sizeof ss.s[j].col.n);
@@ -1210,6 +1616,8 @@ shipped_runs_events_equal_live(void **state)
 		}
 		print_message("%s: %ld steps, %zu events, the replay's are the live run's\n",
 		    names[i], steps, nev);
+		assert_int_equal(re.steps, tr.nsteps);
+		replay_events_free(&re);
 		assert_int_equal(steps, tr.nsteps);
 		assert_int_equal(nev, tr.nev);
 		assert_true(nev > 10000);
@@ -1229,6 +1637,7 @@ main(void)
 		cmocka_unit_test(lossy_round_trip),
 		cmocka_unit_test(cut_at_every_byte),
 		cmocka_unit_test(bit_flips),
+		cmocka_unit_test(digest_mismatch),
 		cmocka_unit_test(resume_every_keyframe),
 		cmocka_unit_test(resume_every_keyframe_fast),
 		cmocka_unit_test(restore_checks),
@@ -1239,6 +1648,7 @@ main(void)
 		cmocka_unit_test(cli_precision),
 		cmocka_unit_test(cli_bad),
 		cmocka_unit_test(cli_sigterm),
+		cmocka_unit_test(cli_events_digest_as_stored),
 		cmocka_unit_test(shipped_replays),
 		cmocka_unit_test(shipped_runs_events_equal_live),
 	};

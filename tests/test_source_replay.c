@@ -473,7 +473,7 @@ replay_totals_equal_live(void **state)
 	sc.col.broad = BROAD_GRID;
 	sc.duration = 0.15;
 	st = new_stepper(&sc);
-	if (record_open(&rec, path, st, 500, 0, &err) != 0)
+	if (record_open(&rec, path, st, 500, 0, false, &err) != 0)
 		fail_msg("%s", err.msg);
 	while (!stepper_done(st)) {
 		step_once(st);
@@ -505,6 +505,127 @@ replay_totals_equal_live(void **state)
 	unlink(path);
 }
 
+/* The tablecloth's first 0.6 s (the fast path: 60 steps) recorded into
+ * path, its events stored or their digest, in steps chunks of 16 steps
+ * and keyframes every 25 steps: chunks across keyframes. */
+static void
+record_tablecloth(const char *path, bool stored)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct recorder rec;
+	struct drape_err err;
+
+	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
+	sc.duration = 0.6;
+	st = new_stepper(&sc);
+	if (record_open(&rec, path, st, 25, 0, stored, &err) != 0)
+		fail_msg("%s", err.msg);
+	rec.w.steps_per_chunk = 16;
+	while (!stepper_done(st)) {
+		step_once(st);
+		if (record_step(&rec, st, &err) != 0)
+			fail_msg("%s", err.msg);
+	}
+	if (record_close(&rec, st, &err) != 0)
+		fail_msg("%s", err.msg);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+/* The inspector on a replay whose events are a digest: at every cursor
+ * of a scrambled walk, the step's events and the history are those of
+ * the same run recorded with its events stored (recomputed from the
+ * keyframe before, or carried on from the last chunk), and no event is
+ * said unavailable. */
+static void
+digest_events_as_stored(void **state)
+{
+	static const long walk[] = { 0, 40, 17, 60, 59, 33, 16, 15, 1, 50, 26, 25, 60 };
+	char dpath[] = "/tmp/drape-digest-XXXXXX", spath[] = "/tmp/drape-stored-XXXXXX";
+	struct source src, srcs;
+	struct source_replay sr, srs;
+	struct source_state s;
+	struct replay rp;
+	struct drape_err err;
+	const struct contact_event *ed, *es;
+	size_t i, k, nd, ns, kinds = 0;
+	int fd;
+
+	(void)state;
+	assert_true((fd = mkstemp(dpath)) >= 0);
+	close(fd);
+	assert_true((fd = mkstemp(spath)) >= 0);
+	close(fd);
+	record_tablecloth(dpath, false);
+	record_tablecloth(spath, true);
+	if (source_replay_open(&src, &sr, dpath, &err) != 0 ||
+	    source_replay_open(&srcs, &srs, spath, &err) != 0)
+		fail_msg("%s", err.msg);
+	for (k = 0; k < sr.rp.nchunks; k++)
+		kinds += sr.rp.chunk[k].kind == REPLAY_STEPS_DIGEST;
+	assert_true(kinds >= 4);
+	if (replay_open(&rp, spath, &err) != 0)
+		fail_msg("%s", err.msg);
+	src.state(src.ctx, &s);
+	for (i = 0; i < sizeof walk / sizeof walk[0]; i++) {
+		assert_true(src.seek(src.ctx, SOURCE_GOTO, walk[i]) || walk[i] == cursor(&src));
+		assert_true(srcs.seek(srcs.ctx, SOURCE_GOTO, walk[i]) || walk[i] == cursor(&srcs));
+		assert_int_equal(cursor(&src), walk[i]);
+		ed = src.events(src.ctx, &nd);
+		es = srcs.events(srcs.ctx, &ns);
+		assert_int_equal(nd, ns);
+		if (nd > 0)
+			assert_memory_equal(ed, es, nd * sizeof *ed);
+		history_equals_truth(&src, &rp, s.cl->n, walk[i]);
+		src.state(src.ctx, &s);
+		assert_null(s.ev_note);
+	}
+	replay_close(&rp);
+	source_replay_close(&sr);
+
+	/* the first keyframe damaged: the steps before the next one have
+	 * no keyframe to be recomputed from, and the screen says so */
+	{
+		FILE *f = fopen(dpath, "r+b");
+		const struct replay_chunk *c;
+
+		if (replay_open(&rp, dpath, &err) != 0)
+			fail_msg("%s", err.msg);
+		c = &rp.chunk[replay_find_keyframe(&rp, 0)];
+		assert_int_equal(c->first_step, 0);
+		assert_non_null(f);
+		assert_int_equal(fseek(f, (long)c->offset + 40, SEEK_SET), 0);
+		assert_int_equal(fputc(0x5a ^ 0xff, f), 0x5a ^ 0xff);
+		assert_int_equal(fclose(f), 0);
+		replay_close(&rp);
+	}
+	if (source_replay_open(&src, &sr, dpath, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 14));
+	assert_true(srcs.seek(srcs.ctx, SOURCE_GOTO, 14));
+	srcs.events(srcs.ctx, &ns);
+	assert_true(ns > 0);	/* the cloth reaches the table */
+	src.events(src.ctx, &nd);
+	assert_int_equal(nd, 0);
+	src.state(src.ctx, &s);
+	assert_non_null(s.ev_note);
+	assert_non_null(strstr(s.ev_note, "the events of steps 0 to 15 are unavailable: no "
+	    "intact keyframe at or before step 0"));
+	/* steps 48 to 59 from the keyframe at 25: there */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 55));
+	assert_true(srcs.seek(srcs.ctx, SOURCE_GOTO, 55));
+	ed = src.events(src.ctx, &nd);
+	es = srcs.events(srcs.ctx, &ns);
+	assert_int_equal(nd, ns);
+	assert_true(nd > 0);
+	assert_memory_equal(ed, es, nd * sizeof *ed);
+	source_replay_close(&sr);
+	source_replay_close(&srs);
+	unlink(dpath);
+	unlink(spath);
+}
+
 int
 main(void)
 {
@@ -518,6 +639,7 @@ main(void)
 		cmocka_unit_test(cut_file),
 		cmocka_unit_test(live_run_records),
 		cmocka_unit_test(replay_totals_equal_live),
+		cmocka_unit_test(digest_events_as_stored),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -188,6 +188,13 @@ grid_predict(const unsigned char *w, size_t f, size_t nodes, size_t width, size_
 	    left && up ? grid_tdiff(w, f, nodes, i - width - 1, k) : 0, left, up);
 }
 
+/* The words as decode_grid's order needs them, computed the cheap way: a
+ * frame's temporal differences first, each once (grid_predict would
+ * take each four times, with a division for the column), then each
+ * node's residual from the last backwards, its neighbours' differences
+ * being at lower indices and so not yet replaced. The same words as
+ * zigzag(grid_tdiff - grid_predict) node by node; the run's thread
+ * spent 1.3 % of a recorded tablecloth's instructions on that. */
 static void
 encode_grid(const unsigned char *w, size_t nframes, size_t nodes, size_t width, uint32_t *tmp,
     unsigned char *out)
@@ -195,10 +202,19 @@ encode_grid(const unsigned char *w, size_t nframes, size_t nodes, size_t width, 
 	size_t f, i, k;
 
 	for (k = 0; k < 3; k++)
-		for (f = 0; f < nframes; f++)
+		for (f = 0; f < nframes; f++) {
+			uint32_t *d = tmp + (k * nframes + f) * nodes;
+
 			for (i = 0; i < nodes; i++)
-				tmp[(k * nframes + f) * nodes + i] = zigzag(grid_tdiff(w, f, nodes, i, k) -
-				    grid_predict(w, f, nodes, width, i, k));
+				d[i] = grid_tdiff(w, f, nodes, i, k);
+			for (i = nodes; i-- > 0;) {
+				size_t col = i - i / width * width;
+				int left = col > 0, up = i >= width;
+
+				d[i] = zigzag(d[i] - med(left ? d[i - 1] : 0, up ? d[i - width] : 0,
+				    left && up ? d[i - width - 1] : 0, left, up));
+			}
+		}
 	codec_shuffle((const unsigned char *)tmp, out, 3 * nframes * nodes, 4);
 }
 

@@ -14,8 +14,9 @@ record_default_keyframes(const struct stepper *st)
 
 	stepper_report(st, &r);
 	k = floor(0.5 / r.dt_set + 0.5);
-
-	return k >= 1 && k < 1e9 ? (long)k : 1;
+	if (k > RECORD_KEYFRAME_MOST)
+		k = RECORD_KEYFRAME_MOST;
+	return k >= 1 ? (long)k : 1;
 }
 
 /* Frame k belongs at t = k / rate; a state within a millionth of a step

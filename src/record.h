@@ -16,7 +16,15 @@ struct recorder {
 	long last_key;		/* step of the last keyframe, -1: none */
 };
 
-/* The default keyframe interval: half a second of the scene's step. */
+/* The default keyframe interval: half a second of the scene's step, at
+ * most RECORD_KEYFRAME_MOST steps. A digest's events are recomputed from
+ * the keyframe before them (replay_events.h), so the steps between
+ * keyframes bound what showing one step's events costs: under rk4 on the
+ * tablecloth half a second is 3,774 steps, some 3 s of wall time, and a
+ * jump in the terminal interface froze that long; 500 steps take about
+ * 0.4 s there, for some 22 KB more a keyframe (the fast path's 50 steps
+ * a half second are unchanged). */
+#define RECORD_KEYFRAME_MOST 500
 long record_default_keyframes(const struct stepper *st);
 
 /* Opens path and writes the scene, a keyframe and a frame of the current

@@ -60,6 +60,7 @@ struct tui {
 	int preset;
 	struct raster r;
 	struct evlog log;
+	bool log_stale;		/* a replay's log is to be gathered again (log_now) */
 	int selected;
 	enum panel focus;
 	bool running, ended, help, quit, dirty;
@@ -97,19 +98,42 @@ say(struct tui *ui, const char *fmt, ...)
 	va_end(ap);
 }
 
-/* A replay moved: the inspector's events are those before it (and the
- * message line says so when some of them are unavailable). */
+/* A replay moved: the inspector's events are those before it, gathered
+ * when the node panel shows them or `e` looks at them (log_now), not at
+ * every move. A replay whose events are a digest gathers them by running
+ * the recorded run again up to the cursor (replay_events.h): a jump to
+ * the end of an rk4 tablecloth took the run's seconds, inspector shown
+ * or not. */
 static void
 rebuild_log(struct tui *ui)
 {
+	ui->log_stale = true;
+	ui->ended = ui->src->done(ui->src->ctx);
+}
+
+/* The inspector's events, gathered if the replay moved since (and the
+ * message line says so when some of them are unavailable). */
+static void
+log_now(struct tui *ui)
+{
 	struct source_state s;
 
+	if (!ui->log_stale)
+		return;
+	ui->log_stale = false;
 	evlog_clear(&ui->log);
 	ui->src->history(ui->src->ctx, &ui->log);
-	ui->ended = ui->src->done(ui->src->ctx);
 	ui->src->state(ui->src->ctx, &s);
 	if (s.ev_note != NULL)
 		say(ui, "%s", s.ev_note);
+}
+
+/* The events the selected node has had so far, its log gathered. */
+static long
+selected_events(struct tui *ui)
+{
+	log_now(ui);
+	return ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
 }
 
 static void
@@ -195,7 +219,7 @@ run_frame(struct tui *ui, double budget)
 static void
 seek_event(struct tui *ui)
 {
-	long before = ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
+	long before = selected_events(ui);
 	double start = clock_seconds();
 	long steps = 0;
 	const char *unit = ui->replay ? "frames" : "steps";	/* a replay steps by frames */
@@ -204,11 +228,11 @@ seek_event(struct tui *ui)
 	if (ui->selected < 0 || ui->selected >= ui->log.n)
 		return;
 	ui->running = false;
-	while (ui->log.count[ui->selected] == before && !quit_signal &&
+	while (selected_events(ui) == before && !quit_signal &&
 	    clock_seconds() - start < EVENT_SEEK_WALL && step_once(ui))
 		steps++;
 	ui->src->state(ui->src->ctx, &s);
-	if (ui->log.count[ui->selected] > before)
+	if (selected_events(ui) > before)
 		say(ui, "node %d: an event at step %ld (%ld %s on)", ui->selected,
 		    evlog_get(&ui->log, ui->selected, 0)->step, steps, unit);
 	else if (!ui->ended && !ui->res->blown_up)
@@ -824,6 +848,7 @@ draw_panel(struct tui *ui, enum panel p, struct rect at, const struct source_sta
 		screen_hash(&t, &ss);
 		break;
 	case PANEL_NODE:
+		log_now(ui);
 		screen_node(&t, s, ui->selected, ui->src->force(ui->src->ctx, ui->selected, &f) ?
 		    &f : NULL, &ui->log);
 		break;

@@ -1626,6 +1626,42 @@ shipped_runs_events_equal_live(void **state)
 	}
 }
 
+/* The recorder's default keyframe interval: half a second of the step, at
+ * most RECORD_KEYFRAME_MOST steps, which bounds what recomputing a
+ * digest's events costs (a step far from its keyframe under rk4 took 5 s
+ * at half a second, 3,774 steps). */
+static void
+keyframe_default_bounded(void **state)
+{
+	static const struct {
+		const char *dt;
+		long want;
+	} c[] = {
+		{ "10 ms", 50 },
+		{ "1 ms", 500 },
+		{ "0.1 ms", RECORD_KEYFRAME_MOST },
+		{ "1 s", 1 },
+	};
+	char text[4096];
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof c / sizeof c[0]; i++) {
+		struct scene sc;
+		struct stepper *st;
+		const char *at = strstr(tiny_scene, "dt = auto");
+
+		assert_non_null(at);
+		snprintf(text, sizeof text, "%.*sdt = %s%s", (int)(at - tiny_scene), tiny_scene,
+		    c[i].dt, at + strlen("dt = auto"));
+		parse_text(&sc, text);
+		st = new_stepper(&sc);
+		assert_int_equal(record_default_keyframes(st), c[i].want);
+		stepper_free(st);
+		scene_free(&sc);
+	}
+}
+
 int
 main(void)
 {
@@ -1633,6 +1669,7 @@ main(void)
 		cmocka_unit_test(codec_round_trip),
 		cmocka_unit_test(codec_grid_round_trip),
 		cmocka_unit_test(grid_width_refused),
+		cmocka_unit_test(keyframe_default_bounded),
 		cmocka_unit_test(round_trip),
 		cmocka_unit_test(lossy_round_trip),
 		cmocka_unit_test(cut_at_every_byte),

@@ -208,8 +208,7 @@ encode_grid(const unsigned char *w, size_t nframes, size_t nodes, size_t width, 
 			for (i = 0; i < nodes; i++)
 				d[i] = grid_tdiff(w, f, nodes, i, k);
 			for (i = nodes; i-- > 0;) {
-				size_t col = i - i / width * width;
-				int left = col > 0, up = i >= width;
+				int left = i % width > 0, up = i >= width;
 
 				d[i] = zigzag(d[i] - med(left ? d[i - 1] : 0, up ? d[i - width] : 0,
 				    left && up ? d[i - width - 1] : 0, left, up));

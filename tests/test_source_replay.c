@@ -448,6 +448,21 @@ live_run_records(void **state)
 	unlink(path);
 }
 
+/* Steps st to its end, each step recorded by rec, which is then closed. */
+static void
+record_to_end(struct recorder *rec, struct stepper *st)
+{
+	struct drape_err err;
+
+	while (!stepper_done(st)) {
+		step_once(st);
+		if (record_step(rec, st, &err) != 0)
+			fail_msg("%s", err.msg);
+	}
+	if (record_close(rec, st, &err) != 0)
+		fail_msg("%s", err.msg);
+}
+
 /* The statistics a replay's viewer adds up from the recorded steps equal
  * the live run's totals, counter for counter (and the hash's sums), on the
  * tablecloth's first 0.15 s. */
@@ -475,13 +490,7 @@ replay_totals_equal_live(void **state)
 	st = new_stepper(&sc);
 	if (record_open(&rec, path, st, 500, 0, false, &err) != 0)
 		fail_msg("%s", err.msg);
-	while (!stepper_done(st)) {
-		step_once(st);
-		if (record_step(&rec, st, &err) != 0)
-			fail_msg("%s", err.msg);
-	}
-	if (record_close(&rec, st, &err) != 0)
-		fail_msg("%s", err.msg);
+	record_to_end(&rec, st);
 	live = *report_of(st).total;
 	assert_true(live.n[STAT_CONTACTS + CONTACT_OBSTACLE] > 1000);
 	assert_true(live.n[STAT_FILLS] > 10);
@@ -522,13 +531,7 @@ record_tablecloth(const char *path, bool stored)
 	if (record_open(&rec, path, st, 25, 0, stored, &err) != 0)
 		fail_msg("%s", err.msg);
 	rec.w.steps_per_chunk = 16;
-	while (!stepper_done(st)) {
-		step_once(st);
-		if (record_step(&rec, st, &err) != 0)
-			fail_msg("%s", err.msg);
-	}
-	if (record_close(&rec, st, &err) != 0)
-		fail_msg("%s", err.msg);
+	record_to_end(&rec, st);
 	stepper_free(st);
 	scene_free(&sc);
 }

@@ -213,12 +213,16 @@ consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp
 		    v3_scale(v3_load(y0 + n3 + 3 * cp->vert[k]), h) : v3(0, 0, 0);
 	/* first side's vertices against the second's: the vertex against the
 	 * triangle's three, or edge against edge */
+	/* the largest of the squares, then one root: the same number, as a
+	 * correctly rounded square root is monotonic */
 	for (k = 0; k < first; k++)
 		for (l = first; l < 4; l++) {
-			double r = v3_len(v3_sub(disp[k], disp[l]));
+			vec3 r = v3_sub(disp[k], disp[l]);
+			double r2 = v3_dot(r, r);
 
-			rel = r > rel ? r : rel;
+			rel = r2 > rel ? r2 : rel;
 		}
+	rel = sqrt(rel);
 	if (dist - CONTACTS_REACH_MOTION * rel >= CONTACTS_REACH * ct->thickness)
 		return 0;
 	memcpy(cp->w, w, sizeof cp->w);

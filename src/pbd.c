@@ -72,6 +72,53 @@ free_lines(struct pbd_lines *ln)
 	memset(ln, 0, sizeof *ln);
 }
 
+/*
+ * The shear sweep's order. In the cloth's own order a square's four
+ * corners come one after another, each reading the nodes the one before
+ * has just moved: a chain of square roots and divisions that the
+ * processor cannot overlap (a quarter of the strip's time). Sorted by the
+ * colour of the corner's square, (i mod 2, j mod 2), then by which of the
+ * square's corners it is, neighbours in the sweep belong to squares two
+ * apart, which share no node, so one corner's work overlaps the next's.
+ * It is still a Gauss-Seidel sweep, each corner seeing every move before
+ * it, in another order (the graph colouring of Fratarcangeli et al. 2016,
+ * "Vivace", used here for one core's pipeline rather than for threads).
+ */
+static int
+corner_class(const struct cloth *cl, const struct corner *co)
+{
+	int ia, ja, ib, jb, ic, jc, i, j;
+
+	cloth_grid_ij(cl, co->a, &ia, &ja);
+	cloth_grid_ij(cl, co->b, &ib, &jb);
+	cloth_grid_ij(cl, co->c, &ic, &jc);
+	i = ia < ib ? ia : ib;
+	i = ic < i ? ic : i;
+	j = ja < jb ? ja : jb;
+	j = jc < j ? jc : j;
+	/* the square is (i, j); the corner sits at one of its four nodes */
+	return 4 * ((i & 1) + 2 * (j & 1)) + (ic - i) + 2 * (jc - j);
+}
+
+/* A counting sort on corner_class, stable, so the order is fixed. */
+static int
+order_corners(struct pbd *pb, const struct cloth *cl)
+{
+	size_t start[17] = { 0 }, s;
+	int k;
+
+	pb->corner_order = malloc((cl->ncorners + 1) * sizeof *pb->corner_order);
+	if (pb->corner_order == NULL)
+		return -1;
+	for (s = 0; s < cl->ncorners; s++)
+		start[corner_class(cl, &cl->corners[s]) + 1]++;
+	for (k = 1; k < 17; k++)
+		start[k] += start[k - 1];
+	for (s = 0; s < cl->ncorners; s++)
+		pb->corner_order[start[corner_class(cl, &cl->corners[s])]++] = s;
+	return 0;
+}
+
 double
 pbd_substep(const struct forces *fo, double dt)
 {
@@ -113,7 +160,8 @@ pbd_init(struct pbd *pb, const struct scene *sc, const struct forces *fo,
 	    (pb->off = malloc(ns * sizeof *pb->off)) == NULL ||
 	    (pb->rhs = malloc(ns * sizeof *pb->rhs)) == NULL ||
 	    (pb->dir = malloc(3 * ns * sizeof *pb->dir)) == NULL ||
-	    (pb->row = malloc(((size_t)cl->n + 1) * sizeof *pb->row)) == NULL) {
+	    (pb->row = malloc(((size_t)cl->n + 1) * sizeof *pb->row)) == NULL ||
+	    order_corners(pb, cl) != 0) {
 		pbd_free(pb);
 		return -1;
 	}
@@ -137,6 +185,7 @@ pbd_free(struct pbd *pb)
 	free(pb->rhs);
 	free(pb->dir);
 	free(pb->row);
+	free(pb->corner_order);
 	memset(pb, 0, sizeof *pb);
 }
 
@@ -208,7 +257,7 @@ solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
 
 /*
  * Shear as compliant constraints, one Gauss-Seidel sweep over the corners
- * a substep (XPBD, Macklin et al. 2016): a corner's energy k c^2/2, c the
+ * a substep, in colour order (order_corners) (XPBD, Macklin et al. 2016): a corner's energy k c^2/2, c the
  * cosine of its angle (forces.c add_shear), is the constraint C = c with
  * compliance 1/k, so that (lambda starting at 0) dl = -c / (sum w |grad c|^2
  * + 1/(k h^2)) and x += w grad(c) dl. Taken explicitly, shear set the
@@ -228,7 +277,7 @@ solve_shear(struct pbd *pb, double h, double *x)
 	size_t s;
 
 	for (s = 0; s < cl->ncorners; s++) {
-		const struct corner *co = &cl->corners[s];
+		const struct corner *co = &cl->corners[pb->corner_order[s]];
 		double wa = pb->w[co->a], wb = pb->w[co->b], wc = pb->w[co->c];
 		vec3 xc, e1, e2, ga, gb, gc;
 		double l1s, l2s, q, inv12, c, den, dl;
@@ -252,7 +301,10 @@ solve_shear(struct pbd *pb, double h, double *x)
 		ga = v3_madd(v3_scale(e2, inv12), e1, -c * l2s * q);
 		gb = v3_madd(v3_scale(e1, inv12), e2, -c * l1s * q);
 		gc = v3_neg(v3_add(ga, gb));
-		den = wa * v3_dot(ga, ga) + wb * v3_dot(gb, gb) + wc * v3_dot(gc, gc) +
+		/* |ga|^2 = (1 - c^2)/|e1|^2, |gb|^2 = (1 - c^2)/|e2|^2 and
+		 * ga.gb = -c (1 - c^2)/(|e1||e2|): from the scalars, beside the
+		 * gradients rather than after them (5 % of a run's time) */
+		den = (1 - c * c) * ((wa + wc) * l2s * q + (wb + wc) * l1s * q - 2 * wc * c * inv12) +
 		    1 / (co->k * h * h);
 		dl = -c / den;
 		v3_store(x + 3 * co->a, v3_madd(v3_load(x + 3 * co->a), ga, wa * dl));

@@ -24,7 +24,8 @@
  *     the shear angle's cosine, left to the alternation of the two
  *     families (one each a substep);
  *   - the shear corners are compliant constraints too, one Gauss-Seidel
- *     sweep a substep (C = cos of the corner's angle, compliance 1/k):
+ *     sweep a substep in colour order, corners next to each other sharing
+ *     no node (C = cos of the corner's angle, compliance 1/k):
  *     taken explicitly they set the substep, 8.6 times shorter than
  *     bending's on the shipped tablecloth;
  *   - held nodes follow their prescribed motion; nodes inside an analytic
@@ -62,6 +63,7 @@ struct pbd {
 	double *a, *xprev, *xs, *vs;	/* 3n scratch */
 	double *diag, *off, *rhs, *dir;	/* per spring: the line system */
 	double *row;		/* per node: the tension's stiffness (pbd.c) */
+	size_t *corner_order;	/* the shear sweep's order (pbd.c order_corners) */
 	long substeps;		/* so far */
 };
 

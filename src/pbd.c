@@ -200,57 +200,104 @@ pbd_free(struct pbd *pb)
  * is tridiagonal, w_a + w_b on the diagonal and -w(n_k+1) u_k.u_k+1 beside
  * it. Then x += W J' dl.
  */
+/* Lines solved side by side in solve_family's Thomas passes. */
+#define LINES_TOGETHER 4
+
+/* Line l's system: directions, diagonal, right-hand side and coupling. */
+static void
+line_system(struct pbd *pb, const struct pbd_lines *ln, int l, double h, double g, const double *x)
+{
+	const struct cloth *cl = pb->fo->cl;
+	int lo = ln->start[l], hi = ln->start[l + 1], k;
+
+	for (k = lo; k < hi; k++) {
+		const struct spring *sp = &cl->springs[ln->spring[k]];
+		vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
+		double len = v3_len(d), c;
+		vec3 u = len > 0 ? v3_scale(d, 1 / len) : v3(0, 0, 0);
+
+		v3_store(pb->dir + 3 * k, u);
+		c = len - sp->rest;
+		if (g > 0) {
+			vec3 dd = v3_sub(v3_sub(v3_load(x + 3 * sp->b), v3_load(pb->xprev + 3 * sp->b)),
+			    v3_sub(v3_load(x + 3 * sp->a), v3_load(pb->xprev + 3 * sp->a)));
+
+			c += g * v3_dot(u, dd);
+		}
+		pb->diag[k] = pb->w[sp->a] + pb->w[sp->b] + 1 / (sp->k * h * h * (1 + g));
+		pb->rhs[k] = -c / (1 + g);
+	}
+	/* consecutive springs share a node: the coupling */
+	for (k = lo; k + 1 < hi; k++)
+		pb->off[k] = -pb->w[cl->springs[ln->spring[k]].b] *
+		    v3_dot(v3_load(pb->dir + 3 * k), v3_load(pb->dir + 3 * (k + 1)));
+}
+
+/*
+ * Thomas's passes over lines [l0, l1) side by side: element k of each in
+ * turn. A line's pass is a chain of divisions, each waiting for the one
+ * before; the lines' chains are independent, so taken together the
+ * processor overlaps them. Each line's arithmetic is what it would be
+ * alone, in the same order.
+ */
+static void
+thomas_lines(struct pbd *pb, const struct pbd_lines *ln, int l0, int l1)
+{
+	int l, k, most = 0;
+
+	for (l = l0; l < l1; l++)
+		most = ln->start[l + 1] - ln->start[l] > most ? ln->start[l + 1] - ln->start[l] : most;
+	for (k = 1; k < most; k++)
+		for (l = l0; l < l1; l++) {
+			int at = ln->start[l] + k;
+			double m;
+
+			if (at >= ln->start[l + 1])
+				continue;
+			m = pb->off[at - 1] / pb->diag[at - 1];
+			pb->diag[at] -= m * pb->off[at - 1];
+			pb->rhs[at] -= m * pb->rhs[at - 1];
+		}
+	for (l = l0; l < l1; l++)
+		if (ln->start[l + 1] > ln->start[l])
+			pb->rhs[ln->start[l + 1] - 1] /= pb->diag[ln->start[l + 1] - 1];
+	for (k = most - 2; k >= 0; k--)
+		for (l = l0; l < l1; l++) {
+			int at = ln->start[l] + k;
+
+			if (at + 1 >= ln->start[l + 1])
+				continue;
+			pb->rhs[at] = (pb->rhs[at] - pb->off[at] * pb->rhs[at + 1]) / pb->diag[at];
+		}
+}
+
 static void
 solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
 {
 	const struct cloth *cl = pb->fo->cl;
 	double g = pb->fo->spring_damping / h;
-	int l;
+	int l0, l;
 
-	for (l = 0; l < ln->nlines; l++) {
-		int lo = ln->start[l], hi = ln->start[l + 1], k;
+	/* a family's lines share no node, so a line's system may be built
+	 * before the lines beside it have moved their nodes */
+	for (l0 = 0; l0 < ln->nlines; l0 += LINES_TOGETHER) {
+		int l1 = l0 + LINES_TOGETHER < ln->nlines ? l0 + LINES_TOGETHER : ln->nlines;
 
-		if ((l & 63) == 0 && forces_stopped(pb->fo))
+		if ((l0 & 63) == 0 && forces_stopped(pb->fo))
 			return;		/* the step is dropped (pbd_step) */
-		if (hi == lo)
-			continue;
-		for (k = lo; k < hi; k++) {
-			const struct spring *sp = &cl->springs[ln->spring[k]];
-			vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
-			double len = v3_len(d), c;
-			vec3 u = len > 0 ? v3_scale(d, 1 / len) : v3(0, 0, 0);
+		for (l = l0; l < l1; l++)
+			line_system(pb, ln, l, h, g, x);
+		thomas_lines(pb, ln, l0, l1);
+		for (l = l0; l < l1; l++) {
+			int k;
 
-			v3_store(pb->dir + 3 * k, u);
-			c = len - sp->rest;
-			if (g > 0) {
-				vec3 dd = v3_sub(v3_sub(v3_load(x + 3 * sp->b), v3_load(pb->xprev + 3 * sp->b)),
-				    v3_sub(v3_load(x + 3 * sp->a), v3_load(pb->xprev + 3 * sp->a)));
+			for (k = ln->start[l]; k < ln->start[l + 1]; k++) {
+				const struct spring *sp = &cl->springs[ln->spring[k]];
+				vec3 du = v3_scale(v3_load(pb->dir + 3 * k), pb->rhs[k]);
 
-				c += g * v3_dot(u, dd);
+				v3_store(x + 3 * sp->a, v3_madd(v3_load(x + 3 * sp->a), du, -pb->w[sp->a]));
+				v3_store(x + 3 * sp->b, v3_madd(v3_load(x + 3 * sp->b), du, pb->w[sp->b]));
 			}
-			pb->diag[k] = pb->w[sp->a] + pb->w[sp->b] + 1 / (sp->k * h * h * (1 + g));
-			pb->rhs[k] = -c / (1 + g);
-		}
-		/* consecutive springs share a node: the coupling */
-		for (k = lo; k + 1 < hi; k++)
-			pb->off[k] = -pb->w[cl->springs[ln->spring[k]].b] *
-			    v3_dot(v3_load(pb->dir + 3 * k), v3_load(pb->dir + 3 * (k + 1)));
-		/* Thomas: forward elimination, then back substitution */
-		for (k = lo + 1; k < hi; k++) {
-			double m = pb->off[k - 1] / pb->diag[k - 1];
-
-			pb->diag[k] -= m * pb->off[k - 1];
-			pb->rhs[k] -= m * pb->rhs[k - 1];
-		}
-		pb->rhs[hi - 1] /= pb->diag[hi - 1];
-		for (k = hi - 2; k >= lo; k--)
-			pb->rhs[k] = (pb->rhs[k] - pb->off[k] * pb->rhs[k + 1]) / pb->diag[k];
-		for (k = lo; k < hi; k++) {
-			const struct spring *sp = &cl->springs[ln->spring[k]];
-			vec3 du = v3_scale(v3_load(pb->dir + 3 * k), pb->rhs[k]);
-
-			v3_store(x + 3 * sp->a, v3_madd(v3_load(x + 3 * sp->a), du, -pb->w[sp->a]));
-			v3_store(x + 3 * sp->b, v3_madd(v3_load(x + 3 * sp->b), du, pb->w[sp->b]));
 		}
 	}
 }

@@ -275,11 +275,14 @@ box_empty(double *bx)
 	bx[3] = bx[4] = bx[5] = -INFINITY;
 }
 
+/* All six comparisons, without a branch between them: in a traversal the
+ * outcome is a coin toss, and a mispredicted branch a comparison cost a
+ * quarter of the tree's time. */
 static int
 box_overlap(const double *a, const double *b)
 {
-	return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] &&
-	    a[2] <= b[5] && b[2] <= a[5];
+	return (a[0] <= b[3]) & (b[0] <= a[3]) & (a[1] <= b[4]) & (b[1] <= a[4]) &
+	    (a[2] <= b[5]) & (b[2] <= a[5]);
 }
 
 /*

@@ -28,6 +28,9 @@
 #      audited on every frame: the largest step before it misbehaves.
 #   9. the TUI on the shipped tablecloth at 80 x 24 (tmux): the speed its
 #      status line shows once the run has ended; target at least real time.
+#  10. the floor: both scenes with fast as shipped and with self-contact
+#      off (the substeps and the analytic obstacles alone), against the
+#      wall time the speed targets allow.
 # The side-by-side runs of Blender and Bullet are not measured here
 # (bench/peers.sh).
 # Timing runs one job at a time.
@@ -314,6 +317,40 @@ if want 9; then
 	else
 		echo "the TUI at 80 x 24: not measured (no tmux)"
 	fi
+	echo
+fi
+# ---- 10: what bounds the speed ----
+# The shipped scenes with fast as shipped and with self-contact off: the
+# substeps and the analytic obstacles alone (the cloth passes through
+# itself, so that run's shape means nothing), against the wall time the
+# speed target allows (the scene's duration over 20 or 10). The run's
+# "collision stages" is the exact check at the end of each step; the rest
+# of the difference is finding and holding the step's contacts.
+if want 10; then
+	for s in tablecloth strip; do
+		: >"$tmp/floor-$s"
+		for r in $(seq 1 "$runs"); do
+			for v in on off; do
+				[ -t 2 ] && printf '\r  round %d: %s self %s          ' "$r" "$s" "$v" >&2
+				"$drape" run --headless --set "collision.self=$v" "$srcdir/scenes/$s.scene" \
+					>"$tmp/out" 2>"$tmp/err" ||
+					{ echo "$prog: $s self $v: exit $?: $(head -n 1 "$tmp/err")" >&2; continue; }
+				awk -v v=$v '/^wall time / { print v, $3, $7 }' "$tmp/out" >>"$tmp/floor-$s"
+			done
+		done
+	done
+	[ -t 2 ] && printf '\r%60s\r' '' >&2
+	for s in tablecloth strip; do
+		case $s in tablecloth) goal=20 dur=2 ;; *) goal=10 dur=3 ;; esac
+		on=$(awk '$1 == "on" { print $2 }' "$tmp/floor-$s" | median)
+		chk=$(awk '$1 == "on" { print $3 }' "$tmp/floor-$s" | median)
+		off=$(awk '$1 == "off" { print $2 }' "$tmp/floor-$s" | median)
+		awk -v s=$s -v g=$goal -v d=$dur -v on="$on" -v c="$chk" -v off="$off" 'BEGIN {
+			b = d / g
+			if (on == "-" || off == "-") { printf "floor: %s: not measured\n", s; exit }
+			printf "floor: %s with fast: %s s as shipped (the check at each step'"'"'s end %s s); self-contact off %s s, %.0f %% of the %g s that %gx real time allows\n",
+				s, on, c, off, 100 * off / b, b, g }'
+	done
 	echo
 fi
 echo "not measured here: Blender and Bullet side by side on the peers' scenes"

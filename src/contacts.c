@@ -212,9 +212,9 @@ consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp
 		disp[k] = cp->vert[k] < col->ncloth ?
 		    v3_scale(v3_load(y0 + n3 + 3 * cp->vert[k]), h) : v3(0, 0, 0);
 	/* first side's vertices against the second's: the vertex against the
-	 * triangle's three, or edge against edge */
-	/* the largest of the squares, then one root: the same number, as a
-	 * correctly rounded square root is monotonic */
+	 * triangle's three, or edge against edge; the largest of the squares,
+	 * then one root (the same number: a correctly rounded root is
+	 * monotonic) */
 	for (k = 0; k < first; k++)
 		for (l = first; l < 4; l++) {
 			vec3 r = v3_sub(disp[k], disp[l]);

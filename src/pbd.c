@@ -189,18 +189,7 @@ pbd_free(struct pbd *pb)
 	memset(pb, 0, sizeof *pb);
 }
 
-/*
- * One family's lines, each solved at once. For line springs k = 0..m-1
- * between nodes n_k and n_k+1, direction u_k and violation C_k, the XPBD
- * update (lambda starts at 0 every substep) solves
- *   (J W J' + a~/(1 + g)) dl = -(C + g J dx)/(1 + g),
- * a~ = 1/(k h^2) the compliance, g = spring_damping/h the dashpot's share
- * (Macklin et al. 2016, eq. 26, its rows divided by 1 + g so that the
- * system stays symmetric), dx the motion since the substep began: J W J'
- * is tridiagonal, w_a + w_b on the diagonal and -w(n_k+1) u_k.u_k+1 beside
- * it. Then x += W J' dl.
- */
-/* Lines solved side by side in solve_family's Thomas passes. */
+/* Lines solved side by side in Thomas's passes (thomas_lines). */
 #define LINES_TOGETHER 4
 
 /* Line l's system: directions, diagonal, right-hand side and coupling. */
@@ -245,8 +234,11 @@ thomas_lines(struct pbd *pb, const struct pbd_lines *ln, int l0, int l1)
 {
 	int l, k, most = 0;
 
-	for (l = l0; l < l1; l++)
-		most = ln->start[l + 1] - ln->start[l] > most ? ln->start[l + 1] - ln->start[l] : most;
+	for (l = l0; l < l1; l++) {
+		int len = ln->start[l + 1] - ln->start[l];
+
+		most = len > most ? len : most;
+	}
 	for (k = 1; k < most; k++)
 		for (l = l0; l < l1; l++) {
 			int at = ln->start[l] + k;
@@ -271,6 +263,19 @@ thomas_lines(struct pbd *pb, const struct pbd_lines *ln, int l0, int l1)
 		}
 }
 
+/*
+ * One family's lines, each solved at once. For line springs k = 0..m-1
+ * between nodes n_k and n_k+1, direction u_k and violation C_k, the XPBD
+ * update (lambda starts at 0 every substep) solves
+ *   (J W J' + a~/(1 + g)) dl = -(C + g J dx)/(1 + g),
+ * a~ = 1/(k h^2) the compliance, g = spring_damping/h the dashpot's share
+ * (Macklin et al. 2016, eq. 26, its rows divided by 1 + g so that the
+ * system stays symmetric), dx the motion since the substep began: J W J'
+ * is tridiagonal, w_a + w_b on the diagonal and -w(n_k+1) u_k.u_k+1 beside
+ * it. Then x += W J' dl. A family's lines share no node, so four at a
+ * time have their systems built, solved side by side (thomas_lines) and
+ * then applied.
+ */
 static void
 solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
 {
@@ -278,8 +283,6 @@ solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
 	double g = pb->fo->spring_damping / h;
 	int l0, l;
 
-	/* a family's lines share no node, so a line's system may be built
-	 * before the lines beside it have moved their nodes */
 	for (l0 = 0; l0 < ln->nlines; l0 += LINES_TOGETHER) {
 		int l1 = l0 + LINES_TOGETHER < ln->nlines ? l0 + LINES_TOGETHER : ln->nlines;
 
@@ -304,18 +307,18 @@ solve_family(struct pbd *pb, const struct pbd_lines *ln, double h, double *x)
 
 /*
  * Shear as compliant constraints, one Gauss-Seidel sweep over the corners
- * a substep, in colour order (order_corners) (XPBD, Macklin et al. 2016): a corner's energy k c^2/2, c the
- * cosine of its angle (forces.c add_shear), is the constraint C = c with
- * compliance 1/k, so that (lambda starting at 0) dl = -c / (sum w |grad c|^2
- * + 1/(k h^2)) and x += w grad(c) dl. Taken explicitly, shear set the
- * substep: its frequency is 8.6 times bending's on the shipped tablecloth
- * (1975 against 231 rad/s, Gershgorin), so 11 substeps a 10 ms step where
- * bending alone needs 2. At a substep of milliseconds k h^2 |grad c|^2 / m
- * is below one on cotton jersey (0.2-0.4 on the tablecloth at 1.6 ms:
- * the shear is soft beside the stretch, whose is some 40), where one
- * sweep a substep resolves it well, and the statics are the energy's: at
- * rest every corner's sweep leaves it where its compliance balances the
- * other forces.
+ * a substep in colour order (order_corners); XPBD, Macklin et al. 2016: a
+ * corner's energy k c^2/2, c the cosine of its angle (forces.c add_shear),
+ * is the constraint C = c with compliance 1/k, so that (lambda starting at
+ * 0) dl = -c / (sum w |grad c|^2 + 1/(k h^2)) and x += w grad(c) dl. Taken
+ * explicitly, shear set the substep: its frequency is 8.6 times bending's
+ * on the shipped tablecloth (1975 against 231 rad/s, Gershgorin), so 11
+ * substeps a 10 ms step where bending alone needs 2. At a substep of
+ * milliseconds k h^2 |grad c|^2 / m is below one on cotton jersey (0.2-0.4
+ * on the tablecloth at 1.6 ms: the shear is soft beside the stretch, whose
+ * is some 40), where one sweep a substep resolves it well, and the statics
+ * are the energy's: at rest every corner's sweep leaves it where its
+ * compliance balances the other forces.
  */
 static void
 solve_shear(struct pbd *pb, double h, double *x)

@@ -252,7 +252,7 @@ shipped_clean(const char *name, int integrator)
 	/* the fast path's piles keep a jitter from their contacts' projections
 	 * (the strip: 3.7e-6 to 4.5e-6 J over its last 0.6 s, 4.2 to 5.1 % of
 	 * its peak, 2.8e-6 to 3.8e-6 before the shear sweep's colour order;
-	 * RK4 ends at 3e-8 J); a pile still moving as it was fed is near it */
+	 * RK4 ends at 3e-8 J); a strip still moving as it is fed is near it */
 	assert_true(r.ke_end < (sc.integrator == INTEG_FAST ? 0.1 : 5e-3) * r.ke_max);
 	scene_free(&sc);
 }

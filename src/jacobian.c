@@ -226,3 +226,78 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 					blocks[9 * node[m] + 3 * i + j] += k * v3_dot(w[m][i], w[m][j]);
 	}
 }
+
+/* A's block (r, c) += s * the 3 x 3 matrix m (row-major). */
+static void
+add_block(struct blockmat *A, int r, int c, const double *m, double s)
+{
+	double *b = A->val + 9 * (size_t)blockmat_find(A, r, c);
+	int i;
+
+	for (i = 0; i < 9; i++)
+		b[i] += s * m[i];
+}
+
+void
+jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockmat *A)
+{
+	const struct cloth *cl = jc->fo->cl;
+	double beta = cc * jc->fo->spring_damping;
+	size_t s;
+	int i, j, m, l;
+
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		const double *e = jc->spring + 5 * s;
+		double k[9] = { 0 };
+
+		/* as jacobian_mul: the clamped transverse part everywhere, the
+		 * rest of k (and the dashpot) along u */
+		for (i = 0; i < 3; i++)
+			k[4 * i] = ck * e[4];
+		add_outer(k, v3_load(e), (ck + beta) * e[3] - ck * e[4]);
+		add_block(A, sp->a, sp->a, k, 1);
+		add_block(A, sp->b, sp->b, k, 1);
+		add_block(A, sp->a, sp->b, k, -1);
+		add_block(A, sp->b, sp->a, k, -1);
+	}
+	for (s = 0; s < cl->ncorners; s++) {
+		const struct corner *co = &cl->corners[s];
+		const double *e = jc->corner + 6 * s;
+		vec3 g[3] = { v3_neg(v3_add(v3_load(e), v3_load(e + 3))), v3_load(e), v3_load(e + 3) };
+		int node[3] = { co->c, co->a, co->b };
+
+		for (m = 0; m < 3; m++)
+			for (l = 0; l < 3; l++) {
+				double b[9], a[3] = { g[m].x, g[m].y, g[m].z }, c[3] = { g[l].x, g[l].y, g[l].z };
+
+				for (i = 0; i < 3; i++)
+					for (j = 0; j < 3; j++)
+						b[3 * i + j] = a[i] * c[j];
+				add_block(A, node[m], node[l], b, ck * co->k);
+			}
+	}
+	for (s = 0; s < cl->nhinges; s++) {
+		const struct hinge *hg = &cl->hinges[s];
+		const double *e = jc->hinge + 10 * s;
+		vec3 z = v3(0, 0, 0), w[3][3];	/* w[node][axis]: J's columns */
+		int node[3] = { hg->a, hg->b, hg->c };
+
+		for (i = 0; i < 3; i++) {
+			vec3 u = v3(i == 0, i == 1, i == 2);
+
+			w[0][i] = hinge_dkb(e, v3_neg(u), z);
+			w[1][i] = hinge_dkb(e, u, v3_neg(u));
+			w[2][i] = hinge_dkb(e, z, u);
+		}
+		for (m = 0; m < 3; m++)
+			for (l = 0; l < 3; l++) {
+				double b[9];
+
+				for (i = 0; i < 3; i++)
+					for (j = 0; j < 3; j++)
+						b[3 * i + j] = v3_dot(w[m][i], w[l][j]);
+				add_block(A, node[m], node[l], b, ck * hg->k);
+			}
+	}
+}

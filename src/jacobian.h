@@ -14,6 +14,7 @@
 #ifndef DRAPE_JACOBIAN_H
 #define DRAPE_JACOBIAN_H
 
+#include "blockmat.h"
 #include "forces.h"
 
 struct jacobian {
@@ -36,5 +37,10 @@ void jacobian_mul(const struct jacobian *jc, double ck, double cc, const double 
 /* blocks += the 3 x 3 blocks on the diagonal of ck*K + cc*C_springs, one
  * row-major block of 9 per node (for a preconditioner). */
 void jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blocks);
+
+/* A += ck*K + cc*C_springs, block by block (A has the pattern of the
+ * cloth's elements, blockmat_init_cloth): the same matrix jacobian_mul
+ * applies, for a solver that needs it assembled. */
+void jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockmat *A);
 
 #endif

@@ -1,0 +1,38 @@
+/* blockmat.h: a symmetric matrix of 3 x 3 blocks over the cloth's nodes,
+ * with the pattern its elements couple: a spring's two ends, a corner's
+ * three nodes, a hinge's three (13 blocks a row inside a square grid).
+ * The Newton system of the implicit step (bdf2.h) is assembled into one
+ * each iteration, then applied and smoothed by its solver (mg.h). Both
+ * triangles are stored, by rows, so that a product or a sweep over a row
+ * reads one contiguous run of blocks. */
+#ifndef DRAPE_BLOCKMAT_H
+#define DRAPE_BLOCKMAT_H
+
+#include <stddef.h>
+
+#include "cloth.h"
+
+struct blockmat {
+	int n;			/* block rows: the nodes */
+	int *start;		/* n + 1: row p's blocks are [start[p], start[p + 1]) */
+	int *col;		/* their columns, ascending; every row holds its diagonal */
+	int *diag;		/* n: the index of row p's diagonal block */
+	double *val;		/* 9 doubles a block, row-major */
+	size_t nblocks;
+};
+
+/* The pattern of cl's elements, values zero. 0, or -1 out of memory. */
+int blockmat_init_cloth(struct blockmat *A, const struct cloth *cl);
+/* A general pattern: n rows, row p's columns cols[start[p] .. start[p+1])
+ * in any order, duplicates allowed; the diagonal is added where missing.
+ * 0, or -1 out of memory. */
+int blockmat_init_pattern(struct blockmat *A, int n, const int *start, const int *cols);
+void blockmat_free(struct blockmat *A);	/* a zeroed one is fine */
+
+void blockmat_zero(struct blockmat *A);
+/* The index of block (row, col), or -1 outside the pattern. */
+int blockmat_find(const struct blockmat *A, int row, int col);
+/* y = A x (3n each); y must not alias x. */
+void blockmat_mul(const struct blockmat *A, const double *x, double *y);
+
+#endif

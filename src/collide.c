@@ -62,6 +62,7 @@ collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
 	c->obst = sc->obstacles;
 	c->nobst = sc->nobstacles;
 	c->pad = 2;
+	c->slide_gap = INFINITY;
 	c->pairs = broad_runs(sc);
 	c->active = collide_active(sc);
 	broad_init(&c->br, c->opt.broad);
@@ -110,6 +111,12 @@ void
 collide_set_pad(struct collide *c, double pad)
 {
 	c->pad = pad;
+}
+
+void
+collide_set_slide_gap(struct collide *c, double gap)
+{
+	c->slide_gap = gap;
 }
 
 void

@@ -55,6 +55,9 @@ struct collide {
 	/* ccd: each vertex's box of the step is its swept box widened by pad
 	 * times the step's largest motion (see collide_step, collide_set_pad) */
 	double pad;
+	/* ccd, position = slide: the most of step k's gap a correction
+	 * restores (collide_set_slide_gap) */
+	double slide_gap;
 
 	/* the geometry: cloth nodes, then obstacle mesh vertices */
 	int ncloth, nv;
@@ -107,6 +110,13 @@ void collide_free(struct collide *c);
  * the rare one that is clamped; a method whose own contacts make the
  * corrections few and small may take less. */
 void collide_set_pad(struct collide *c, double pad);
+
+/* ccd with position = slide: a correction restores step k's gap along the
+ * contact's normal, or gap if that is less (INFINITY, as collide_init
+ * sets it: all of it). At a step of milliseconds the gap at step k is a
+ * few microns; at a step of a frame it may be centimetres, and restoring
+ * it all throws the two sides that far apart. */
+void collide_set_slide_gap(struct collide *c, double gap);
 
 /* Polls *flag in the broad phase and the ccd passes: once it is set, the
  * step is given up (c->stopped). NULL: never. */

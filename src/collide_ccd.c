@@ -90,7 +90,9 @@ contact_impulse(struct collide *c, long step, double dt, double toi, int nvert, 
 	}
 	if (response_shared(nvert, w, im, v, n, c->opt.restitution, &fr, dt) < 0)
 		return 0;	/* nothing here can move */
-	g1 -= g0 > 0 ? g0 : 0;	/* < 0: closer than at step k, or crossed */
+	/* < 0: closer than at step k (or than the gap that slide keeps, at
+	 * most), or crossed */
+	g1 -= g0 > 0 ? (g0 < c->slide_gap ? g0 : c->slide_gap) : 0;
 	for (k = 0; k < nvert; k++) {
 		int p = vert[k];
 		double sgn = w[k] > 0 ? 1 : -1;

@@ -304,6 +304,78 @@ forces_energy(const struct forces *fo, double t, const double *x, const double *
 }
 
 double
+forces_elastic(const struct forces *fo, const double *x, double *f)
+{
+	const struct cloth *cl = fo->cl;
+	double rest2 = cl->h * cl->h, e = 0;
+	size_t s;
+
+	if (f != NULL)
+		memset(f, 0, (size_t)cl->n * 3 * sizeof *f);
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		vec3 d = v3_sub(v3_load(x + 3 * sp->b), v3_load(x + 3 * sp->a));
+		double len = v3_len(d), ext = len - sp->rest;
+
+		e += 0.5 * sp->k * ext * ext;
+		if (f != NULL && len > 0) {
+			vec3 fa = v3_scale(d, sp->k * ext / len);
+
+			v3_addto(f + 3 * sp->a, fa);
+			v3_addto(f + 3 * sp->b, v3_neg(fa));
+		}
+	}
+	for (s = 0; s < cl->ncorners; s++) {
+		const struct corner *co = &cl->corners[s];
+		vec3 xc = v3_load(x + 3 * co->c);
+		vec3 e1 = v3_sub(v3_load(x + 3 * co->a), xc), e2 = v3_sub(v3_load(x + 3 * co->b), xc);
+		double l1s = v3_dot(e1, e1), l2s = v3_dot(e2, e2), q, inv12, c, kc;
+		vec3 fa, fb;
+
+		if (l1s == 0 || l2s == 0)
+			continue;
+		q = 1 / (l1s * l2s);
+		inv12 = sqrt(q);
+		c = v3_dot(e1, e2) * inv12;
+		e += 0.5 * co->k * c * c;
+		if (f == NULL)
+			continue;
+		kc = -co->k * c;	/* as add_shear */
+		fa = v3_scale(v3_madd(v3_scale(e2, inv12), e1, -c * l2s * q), kc);
+		fb = v3_scale(v3_madd(v3_scale(e1, inv12), e2, -c * l1s * q), kc);
+		v3_addto(f + 3 * co->a, fa);
+		v3_addto(f + 3 * co->b, fb);
+		v3_addto(f + 3 * co->c, v3_neg(v3_add(fa, fb)));
+	}
+	for (s = 0; s < cl->nhinges; s++) {
+		const struct hinge *hg = &cl->hinges[s];
+		vec3 xb = v3_load(x + 3 * hg->b);
+		vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
+		double d = rest2 + v3_dot(e1, e2), kd, kb2;
+		vec3 kb, fa, fc;
+
+		if (!(d > 1e-9 * rest2)) {
+			/* folded right back: the barrier, and no gradient, as
+			 * add_bend; the other elements' forces are still given */
+			e = INFINITY;
+			continue;
+		}
+		kb = v3_scale(v3_cross(e1, e2), 2 / d);
+		kb2 = v3_dot(kb, kb);
+		e += 0.5 * hg->k * kb2;
+		if (f == NULL)
+			continue;
+		kd = hg->k / d;		/* as add_bend */
+		fa = v3_scale(v3_madd(v3_scale(v3_cross(kb, e2), 2), e2, kb2), -kd);
+		fc = v3_scale(v3_madd(v3_scale(v3_cross(kb, e1), 2), e1, -kb2), -kd);
+		v3_addto(f + 3 * hg->a, fa);
+		v3_addto(f + 3 * hg->c, fc);
+		v3_addto(f + 3 * hg->b, v3_neg(v3_add(fa, fc)));
+	}
+	return e;
+}
+
+double
 energy_total(const struct energy *e)
 {
 	return e->kinetic + e->gravity + e->stretch + e->shear + e->bend + e->load;

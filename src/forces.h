@@ -68,6 +68,13 @@ double forces_fold_limit(double s);
 
 void forces_energy(const struct forces *fo, double t, const double *x, const double *v,
     struct energy *e);
+
+/* The elastic energy (stretch, shear, bending) at positions x, and, when
+ * f is not NULL, its forces, minus its gradient, into f (3n, overwritten):
+ * the potential an implicit step minimises (bdf2.c), in one pass. No
+ * dashpots, no fold limiter, no gravity or loads. +INFINITY where a hinge
+ * has folded right back (its energy's barrier). */
+double forces_elastic(const struct forces *fo, const double *x, double *f);
 double energy_total(const struct energy *e);
 
 /* The speed the loads could give a node on its own over the run's first

@@ -67,6 +67,38 @@ couple(int *cnt, int *start, int *cols, const int *node, int k)
 		}
 }
 
+/* Each element's blocks, looked up once. 0, or -1 out of memory. */
+static int
+find_slots(struct blockmat *A, const struct cloth *cl)
+{
+	size_t e;
+	int i, j;
+
+	if ((A->spring_slot = malloc((2 * cl->nsprings + 1) * sizeof *A->spring_slot)) == NULL ||
+	    (A->corner_slot = malloc((9 * cl->ncorners + 1) * sizeof *A->corner_slot)) == NULL ||
+	    (A->hinge_slot = malloc((9 * cl->nhinges + 1) * sizeof *A->hinge_slot)) == NULL)
+		return -1;
+	for (e = 0; e < cl->nsprings; e++) {
+		A->spring_slot[2 * e] = blockmat_find(A, cl->springs[e].a, cl->springs[e].b);
+		A->spring_slot[2 * e + 1] = blockmat_find(A, cl->springs[e].b, cl->springs[e].a);
+	}
+	for (e = 0; e < cl->ncorners; e++) {
+		int node[3] = { cl->corners[e].c, cl->corners[e].a, cl->corners[e].b };
+
+		for (i = 0; i < 3; i++)
+			for (j = 0; j < 3; j++)
+				A->corner_slot[9 * e + 3 * i + j] = blockmat_find(A, node[i], node[j]);
+	}
+	for (e = 0; e < cl->nhinges; e++) {
+		int node[3] = { cl->hinges[e].a, cl->hinges[e].b, cl->hinges[e].c };
+
+		for (i = 0; i < 3; i++)
+			for (j = 0; j < 3; j++)
+				A->hinge_slot[9 * e + 3 * i + j] = blockmat_find(A, node[i], node[j]);
+	}
+	return 0;
+}
+
 int
 blockmat_init_cloth(struct blockmat *A, const struct cloth *cl)
 {
@@ -106,6 +138,10 @@ blockmat_init_cloth(struct blockmat *A, const struct cloth *cl)
 	free(cnt);
 	free(start);
 	free(cols);
+	if (r == 0 && find_slots(A, cl) != 0) {
+		blockmat_free(A);
+		return -1;
+	}
 	return r;
 oom:
 	free(cnt);
@@ -122,6 +158,9 @@ blockmat_free(struct blockmat *A)
 	free(A->col);
 	free(A->diag);
 	free(A->val);
+	free(A->spring_slot);
+	free(A->corner_slot);
+	free(A->hinge_slot);
 	memset(A, 0, sizeof *A);
 }
 

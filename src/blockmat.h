@@ -19,6 +19,11 @@ struct blockmat {
 	int *diag;		/* n: the index of row p's diagonal block */
 	double *val;		/* 9 doubles a block, row-major */
 	size_t nblocks;
+	/* blockmat_init_cloth's: where each element's blocks are, so that an
+	 * assembly looks nothing up: a spring's (a, b) and (b, a); a corner's
+	 * and a hinge's 3 x 3, row by row in the order (c, a, b) and (a, b,
+	 * c). NULL for a general pattern. */
+	int *spring_slot, *corner_slot, *hinge_slot;
 };
 
 /* The pattern of cl's elements, values zero. 0, or -1 out of memory. */

@@ -21,12 +21,13 @@ static const struct {
 	[INTEG_DOPRI5] = { "dopri5", 5, 1.0, 7 },
 	[INTEG_IMPLICIT_EULER] = { "implicit-euler", 1, INFINITY, 0 },
 	[INTEG_FAST] = { "fast", 1, INFINITY, 0 },
+	[INTEG_BDF2] = { "bdf2", 2, INFINITY, 0 },
 };
 
 bool
 integrator_is_implicit(enum integrator_kind kind)
 {
-	return kind == INTEG_IMPLICIT_EULER || kind == INTEG_FAST;
+	return kind == INTEG_IMPLICIT_EULER || kind == INTEG_FAST || kind == INTEG_BDF2;
 }
 
 const char *
@@ -260,6 +261,7 @@ integrator_step(struct integrator *in, rhs_fn f, void *ctx, double t, const doub
 		return step_dopri5(in, f, ctx, t, y, y_out, dt, dt_next);
 	case INTEG_IMPLICIT_EULER:
 	case INTEG_FAST:
+	case INTEG_BDF2:
 	case INTEG_COUNT:
 		return -1;
 	}

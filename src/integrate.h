@@ -21,6 +21,9 @@ enum integrator_kind {
 	/* The fast path: implicit Euler at steps of a frame, its solve
 	 * preconditioned along the yarns (hess.h); implicit.c steps it too. */
 	INTEG_FAST,
+	/* BDF2 over the whole cloth, a Newton solve a step (bdf2.h); stepped
+	 * by bdf2.c */
+	INTEG_BDF2,
 	INTEG_COUNT
 };
 
@@ -37,7 +40,7 @@ struct integrator {
 };
 
 const char *integrator_name(enum integrator_kind kind);
-/* implicit-euler and fast: stepped by implicit.c. */
+/* implicit-euler, fast and bdf2: stepped by implicit.c, pbd.c, bdf2.c. */
 bool integrator_is_implicit(enum integrator_kind kind);
 int integrator_from_name(const char *name, enum integrator_kind *kind);
 /* "rk4, euler, ... or fast" into buf (cut to len): every name, from the
@@ -51,8 +54,9 @@ void integrator_names(char *buf, size_t len);
  * implicit Euler). */
 int integrator_order(enum integrator_kind kind);
 /* The tolerance a scene that sets none gets: DOPRI5's local error (1e-6),
- * implicit Euler's CG residual relative to its right-hand side (1e-3);
- * the others take none. */
+ * implicit Euler's CG residual relative to its right-hand side (1e-3),
+ * bdf2's Newton residual (an acceleration) over gravity's (1e-3); the
+ * others take none. */
 double integrator_default_tolerance(enum integrator_kind kind);
 double integrator_imag_limit(enum integrator_kind kind);
 

@@ -227,11 +227,11 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 	}
 }
 
-/* A's block (r, c) += s * the 3 x 3 matrix m (row-major). */
+/* Block k of A += s * the 3 x 3 matrix m (row-major). */
 static void
-add_block(struct blockmat *A, int r, int c, const double *m, double s)
+add_block(struct blockmat *A, int k, const double *m, double s)
 {
-	double *b = A->val + 9 * (size_t)blockmat_find(A, r, c);
+	double *b = A->val + 9 * (size_t)k;
 	int i;
 
 	for (i = 0; i < 9; i++)
@@ -256,16 +256,15 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 		for (i = 0; i < 3; i++)
 			k[4 * i] = ck * e[4];
 		add_outer(k, v3_load(e), (ck + beta) * e[3] - ck * e[4]);
-		add_block(A, sp->a, sp->a, k, 1);
-		add_block(A, sp->b, sp->b, k, 1);
-		add_block(A, sp->a, sp->b, k, -1);
-		add_block(A, sp->b, sp->a, k, -1);
+		add_block(A, A->diag[sp->a], k, 1);
+		add_block(A, A->diag[sp->b], k, 1);
+		add_block(A, A->spring_slot[2 * s], k, -1);
+		add_block(A, A->spring_slot[2 * s + 1], k, -1);
 	}
 	for (s = 0; s < cl->ncorners; s++) {
-		const struct corner *co = &cl->corners[s];
 		const double *e = jc->corner + 6 * s;
 		vec3 g[3] = { v3_neg(v3_add(v3_load(e), v3_load(e + 3))), v3_load(e), v3_load(e + 3) };
-		int node[3] = { co->c, co->a, co->b };
+		double kc = ck * cl->corners[s].k;
 
 		for (m = 0; m < 3; m++)
 			for (l = 0; l < 3; l++) {
@@ -274,14 +273,13 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 				for (i = 0; i < 3; i++)
 					for (j = 0; j < 3; j++)
 						b[3 * i + j] = a[i] * c[j];
-				add_block(A, node[m], node[l], b, ck * co->k);
+				add_block(A, A->corner_slot[9 * s + 3 * m + l], b, kc);
 			}
 	}
 	for (s = 0; s < cl->nhinges; s++) {
-		const struct hinge *hg = &cl->hinges[s];
 		const double *e = jc->hinge + 10 * s;
 		vec3 z = v3(0, 0, 0), w[3][3];	/* w[node][axis]: J's columns */
-		int node[3] = { hg->a, hg->b, hg->c };
+		double kh = ck * cl->hinges[s].k;
 
 		for (i = 0; i < 3; i++) {
 			vec3 u = v3(i == 0, i == 1, i == 2);
@@ -297,7 +295,7 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 				for (i = 0; i < 3; i++)
 					for (j = 0; j < 3; j++)
 						b[3 * i + j] = v3_dot(w[m][i], w[l][j]);
-				add_block(A, node[m], node[l], b, ck * hg->k);
+				add_block(A, A->hinge_slot[9 * s + 3 * m + l], b, kh);
 			}
 	}
 }

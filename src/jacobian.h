@@ -39,8 +39,8 @@ void jacobian_mul(const struct jacobian *jc, double ck, double cc, const double 
 void jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blocks);
 
 /* A += ck*K + cc*C_springs, block by block (A has the pattern of the
- * cloth's elements, blockmat_init_cloth): the same matrix jacobian_mul
- * applies, for a solver that needs it assembled. */
+ * cloth's elements and their slots, blockmat_init_cloth's): the same
+ * matrix jacobian_mul applies, for a solver that needs it assembled. */
 void jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockmat *A);
 
 #endif

@@ -42,7 +42,7 @@ keyframe(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 
 	stepper_save(st, &s);
 	rc->last_key = s.step;
-	return replay_write_keyframe(&rc->w, s.step, s.t, s.dt, s.y, s.hash, err);
+	return replay_write_keyframe(&rc->w, s.step, s.t, s.dt, s.y, s.hist, s.hash, err);
 }
 
 int

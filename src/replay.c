@@ -596,9 +596,9 @@ replay_write_frame(struct replay_writer *w, long step, double t, const double *x
 
 int
 replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, const double *y,
-    uint64_t hash, struct drape_err *err)
+    const double *hist, uint64_t hash, struct drape_err *err)
 {
-	size_t n6 = 6 * (size_t)w->nodes, len = 32 + 8 * n6;
+	size_t n6 = 6 * (size_t)w->nodes, len = 32 + 8 * n6 * (hist != NULL ? 2 : 1);
 
 	if (grow(&w->buf, &w->bufcap, len) != 0) {
 		err_set(err, "%s: out of memory", w->path);
@@ -625,6 +625,8 @@ replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, c
 	put64(w->buf + 16, dbits(dt));
 	put64(w->buf + 24, hash);
 	codec_shuffle((const unsigned char *)y, w->buf + 32, n6, 8);
+	if (hist != NULL)
+		codec_shuffle((const unsigned char *)hist, w->buf + 32 + 8 * n6, n6, 8);
 	/* its offset is known when it is written (job_finish) */
 	w->next_key = (long)w->nkey;
 	if (write_chunk(w, REPLAY_KEYFRAME, (uint64_t)step, 1, w->buf, len, Z_DEFAULT_COMPRESSION,
@@ -1036,8 +1038,9 @@ check_chunk_header(const struct replay *r, const struct replay_chunk_header *h)
 		    raw != frames_head(h->kind) + (uint64_t)h->count * (16 + 12 * n))
 			return -1;
 		break;
-	case REPLAY_KEYFRAME:
-		if (h->count != 1 || raw != 32 + 48 * n)
+	case REPLAY_KEYFRAME:	/* with the state one step back from version 5 */
+		if (h->count != 1 || (raw != 32 + 48 * n &&
+		    (r->hdr.version < 5 || raw != 32 + 96 * n)))
 			return -1;
 		break;
 	case REPLAY_STEPS:
@@ -1570,8 +1573,10 @@ replay_read_keyframe(const struct replay *r, size_t i, struct replay_keyframe *k
 	}
 	if (inflate_chunk(r, c, &p, err) != 0)
 		return -1;
-	if ((kf->y = malloc(n6 * sizeof *kf->y)) == NULL) {
+	if ((kf->y = malloc(n6 * sizeof *kf->y)) == NULL ||
+	    (c->raw_len > 32 + 8 * n6 && (kf->hist = malloc(n6 * sizeof *kf->hist)) == NULL)) {
 		free(p);
+		replay_keyframe_free(kf);
 		err_set(err, "chunk %zu: out of memory", c->ordinal);
 		return -1;
 	}
@@ -1580,6 +1585,8 @@ replay_read_keyframe(const struct replay *r, size_t i, struct replay_keyframe *k
 	kf->dt = bitsd(get64(p + 16));
 	kf->hash = get64(p + 24);
 	codec_unshuffle(p + 32, (unsigned char *)kf->y, n6, 8);
+	if (kf->hist != NULL)
+		codec_unshuffle(p + 32 + 8 * n6, (unsigned char *)kf->hist, n6, 8);
 	free(p);
 	return 0;
 }
@@ -1785,6 +1792,7 @@ void
 replay_keyframe_free(struct replay_keyframe *kf)
 {
 	free(kf->y);
+	free(kf->hist);
 	memset(kf, 0, sizeof *kf);
 }
 

@@ -23,13 +23,15 @@
 /* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q);
  * version 3 writes its frames as chunks of the grid (REPLAY_FRAMES_GRID,
  * REPLAY_FRAMES_GRID_Q); version 4 writes its steps' events as a digest
- * (REPLAY_STEPS_DIGEST) unless asked to store them, and reads every kind. */
-#define REPLAY_VERSION 4
+ * (REPLAY_STEPS_DIGEST) unless asked to store them, and reads every kind;
+ * in version 5 a keyframe of a multistep method (bdf2) may also hold the
+ * state one step back. */
+#define REPLAY_VERSION 5
 
 enum replay_kind {
 	REPLAY_META = 1,	/* scene text and resolved options */
 	REPLAY_FRAMES = 2,	/* float32 positions at the output rate */
-	REPLAY_KEYFRAME = 3,	/* the double state y, t, step, dt */
+	REPLAY_KEYFRAME = 3,	/* the double state y (and its history), t, step, dt */
 	REPLAY_STEPS = 4,	/* statistics and events of consecutive steps */
 	REPLAY_INDEX = 5,	/* the keyframes' steps and offsets, at close */
 	REPLAY_FRAMES_Q = 6,	/* positions rounded to a grid (--precision) */
@@ -182,8 +184,10 @@ int replay_writer_open(struct replay_writer *w, const char *path, const struct r
 /* x is the positions of the nodes (3 doubles each), y the whole state. */
 int replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
     struct drape_err *err);
+/* hist: the state one step back (6 * nodes doubles) of a multistep
+ * method, or NULL. */
 int replay_write_keyframe(struct replay_writer *w, long step, double t, double dt,
-    const double *y, uint64_t hash, struct drape_err *err);
+    const double *y, const double *hist, uint64_t hash, struct drape_err *err);
 int replay_write_step(struct replay_writer *w, const struct replay_step *s,
     const struct contact_event *ev, struct drape_err *err);
 /* Writes the pending frames and steps now, as chunks of their own. */
@@ -208,6 +212,7 @@ struct replay_keyframe {
 	double t, dt;
 	uint64_t hash;		/* stepper_hash at the time */
 	double *y;		/* 6 * nodes */
+	double *hist;		/* 6 * nodes, the state one step back; NULL for none */
 };
 
 struct replay_frames {

@@ -66,7 +66,7 @@ replay_resume(const struct replay *rp, const char *file, const struct scene *sc,
 		return NULL;
 	}
 	s = (struct stepper_state){ .step = kf.step, .t = kf.t, .dt = kf.dt, .y = kf.y,
-	    .hash = kf.hash, .nodes = rp->meta.nodes, .dt_set = rp->meta.dt_set };
+	    .hist = kf.hist, .hash = kf.hash, .nodes = rp->meta.nodes, .dt_set = rp->meta.dt_set };
 	if ((rc = stepper_restore(st, &s, &kerr)) != 0) {
 		/* -1: the scene's run is not the recorded one; -2: the keyframe */
 		if (rc == -1)

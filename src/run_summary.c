@@ -30,6 +30,10 @@ integrator_summary(FILE *f, const struct scene *sc, const struct stepper_report 
 	if (sc->integrator == INTEG_FAST)
 		fprintf(f, "steps        %ld (%ld substeps of %.3g s at most", r->step, r->substeps,
 		    r->substeps > 0 ? r->t / (double)r->substeps : 0.0);
+	else if (sc->integrator == INTEG_BDF2)
+		fprintf(f, "steps        %ld (%.2f Newton iterations and %.1f CG iterations a step, "
+		    "%ld unconverged", r->step, r->solves > 0 ? (double)r->newton / (double)r->solves : 0.0,
+		    r->solves > 0 ? (double)r->iters / (double)r->solves : 0.0, r->unconverged);
 	else if (sc->integrator == INTEG_IMPLICIT_EULER)
 		fprintf(f, "steps        %ld (%ld solves, %.1f CG iterations each, %ld unconverged",
 		    r->step, r->solves, r->solves > 0 ? (double)r->iters / (double)r->solves : 0.0,

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bdf2.h"
 #include "clock.h"
 #include "contacts.h"
 #include "implicit.h"
@@ -17,7 +18,8 @@ struct stepper {
 	struct integrator in;	/* the explicit methods */
 	struct implicit im;	/* implicit Euler */
 	struct pbd pb;		/* the fast path */
-	struct contacts ct;	/* its contacts inside a step */
+	struct bdf2 bd;		/* BDF2 */
+	struct contacts ct;	/* their contacts inside a step */
 	struct collide col;
 	double *y, *y_next;	/* positions (3n) then velocities (3n) */
 	double t, t_end;
@@ -75,6 +77,8 @@ stepper_auto_dt(enum integrator_kind kind, double omega, double damping, double 
 	 * stiffness (its solve is preconditioned along the yarns) */
 	if (kind == INTEG_FAST)
 		return STEPPER_FAST_DT;
+	if (kind == INTEG_BDF2)
+		return STEPPER_BDF2_DT;
 	return 0.5 * limit / lam;
 }
 
@@ -183,11 +187,15 @@ init_collisions(struct stepper *st, double vscale, struct drape_err *err)
 	 * the falling ones: 4.7 times the narrow tests, 1.6 times the time,
 	 * the same corrections and no fewer passes (the tablecloth's first
 	 * second, 0.25 against 0) */
-	if (sc->integrator == INTEG_FAST)
+	if (sc->integrator == INTEG_FAST || sc->integrator == INTEG_BDF2)
 		collide_set_pad(&st->col, 0);
+	if (sc->integrator == INTEG_BDF2)
+		collide_set_slide_gap(&st->col, sc->mat.thickness);
 	contacts_init(&st->ct, sc->mat.thickness);
-	if (sc->integrator == INTEG_FAST && pbd_init(&st->pb, sc, &st->net.fo, &st->net.pr,
-	    st->dt_set) != 0) {
+	if ((sc->integrator == INTEG_FAST && pbd_init(&st->pb, sc, &st->net.fo, &st->net.pr,
+	    st->dt_set) != 0) ||
+	    (sc->integrator == INTEG_BDF2 && bdf2_init(&st->bd, sc, &st->net.fo, &st->net.pr,
+	    sc->tolerance) != 0)) {
 		err_set(err, "%s: out of memory", sc->path);
 		return -1;
 	}
@@ -238,6 +246,7 @@ stepper_free(struct stepper *st)
 	integrator_free(&st->in);
 	implicit_free(&st->im);
 	pbd_free(&st->pb);
+	bdf2_free(&st->bd);
 	contacts_free(&st->ct);
 	network_free(&st->net);
 	free(st->lock_run);
@@ -400,11 +409,12 @@ fast_contacts(struct stepper *st, double h, struct step_failure *f)
 }
 
 /* The step's locked nodes into l (the run's figures carried over from
- * st->locks): a free node the collision stages corrected and left exactly
- * where it was at step k. Exact equality is what keep does (it copies step
- * k's position); a node the integrator moved by any amount is not locked. */
+ * st->locks): a free node the collision stages corrected (events from
+ * `first` on) and left exactly where it was at step k. Exact equality is
+ * what keep does (it copies step k's position); a node the integrator
+ * moved by any amount is not locked. */
 static void
-count_locks(struct stepper *st, struct lock_stats *l)
+count_locks(struct stepper *st, size_t first, struct lock_stats *l)
 {
 	const struct cloth *cl = &st->net.cl;
 	size_t n3 = 3 * (size_t)cl->n, e;
@@ -415,7 +425,7 @@ count_locks(struct stepper *st, struct lock_stats *l)
 	l->ke_now = 0;
 	l->run_now = 0;
 	memset(st->corrected, 0, (size_t)cl->n);
-	for (e = 0; e < st->col.nev; e++)
+	for (e = first; e < st->col.nev; e++)
 		if (st->col.ev[e].node >= 0 && st->col.ev[e].node < cl->n)
 			st->corrected[st->col.ev[e].node] = 1;
 	for (p = 0; p < cl->n; p++) {
@@ -447,6 +457,7 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	double *swap, t0 = clock_seconds(), c0;
 	struct drape_err cerr;
 	struct lock_stats locks;
+	size_t own = 0;		/* the events before the check's: the method's own */
 
 	if (h >= remaining * (1 - 1e-12)) {	/* land on the end exactly */
 		h = remaining;
@@ -460,6 +471,17 @@ stepper_step(struct stepper *st, struct step_failure *f)
 			return s;
 		pbd_step(&st->pb, st->t, h, st->y, st->y_next, &st->ct, &st->col);
 		h_next = h;
+	} else if (st->in.kind == INTEG_BDF2) {
+		enum step_status s = fast_contacts(st, h, f);
+
+		if (s != STEP_OK)
+			return s;
+		bdf2_step(&st->bd, st->t, h, st->y, st->y_next, &st->ct, &st->col);
+		h_next = h;
+		if (st->bd.stopped) {
+			snprintf(f->why, sizeof f->why, "stopped by a signal");
+			return failed(st, f, STEP_STOPPED, -1);
+		}
 	} else if (st->in.kind == INTEG_IMPLICIT_EULER) {
 		constrain_resting(st, h);
 		implicit_step(&st->im, st->t, h, st->y, st->y_next);
@@ -494,9 +516,13 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	 * already blown up, whose extent no broad phase could cut into cubes */
 	if ((bad = find_blowup(st, st->y_next, f->why, sizeof f->why)) >= 0)
 		return failed(st, f, STEP_BLOWUP, bad);
-	if (st->in.kind == INTEG_FAST) {
-		if (contacts_events(&st->ct, &st->col, st->step, st->y_next) != 0)
+	if (st->in.kind == INTEG_FAST || st->in.kind == INTEG_BDF2) {
+		if ((st->in.kind == INTEG_BDF2 &&
+		    bdf2_events(&st->bd, &st->col, st->step, st->y_next) != 0) ||
+		    contacts_events(&st->ct, &st->col, st->step, st->y_next) != 0)
 			return collisions_failed(st, f, NULL);
+		if (st->in.kind == INTEG_BDF2)
+			own = st->col.nev;
 	} else {
 		collide_begin(&st->col);
 	}
@@ -515,9 +541,11 @@ stepper_step(struct stepper *st, struct step_failure *f)
 		snprintf(f->why, sizeof f->why, "stopped by a signal");
 		return failed(st, f, STEP_STOPPED, -1);
 	}
-	/* 5. commit */
-	count_locks(st, &locks);
+	/* 5. commit; BDF2's history is the state the step began from */
+	count_locks(st, own, &locks);
 	st->locks = locks;
+	if (st->in.kind == INTEG_BDF2)
+		bdf2_commit(&st->bd, h, st->y, st->y_next, st->corrected);
 	swap = st->y;
 	st->y = st->y_next;
 	st->y_next = swap;
@@ -535,6 +563,7 @@ stepper_set_stop(struct stepper *st, const volatile sig_atomic_t *flag)
 	st->stop = flag;
 	collide_set_stop(&st->col, flag);
 	implicit_set_stop(&st->im, flag);
+	bdf2_set_stop(&st->bd, flag);
 	forces_set_stop(&st->net.fo, flag);
 }
 
@@ -565,9 +594,14 @@ stepper_report(const struct stepper *st, struct stepper_report *r)
 	r->rejected = st->in.rejected;
 	r->solves = st->im.solves;
 	r->substeps = st->pb.substeps;
-
 	r->iters = st->im.iters;
 	r->unconverged = st->im.unconverged;
+	if (st->in.kind == INTEG_BDF2) {
+		r->solves = st->bd.steps;
+		r->newton = st->bd.newton;
+		r->iters = st->bd.cg;
+		r->unconverged = st->bd.unconverged;
+	}
 	r->collisions = st->col.active;
 	r->uses_hash = collide_uses_hash(st->sc);
 	r->cell = st->col.cell;
@@ -580,6 +614,13 @@ stepper_report(const struct stepper *st, struct stepper_report *r)
 	r->collide_wall = st->collide_wall;
 }
 
+/* The state one step back of a multistep method, or NULL. */
+static const double *
+stepper_history(const struct stepper *st)
+{
+	return st->in.kind == INTEG_BDF2 && st->bd.has_hist ? st->bd.hist : NULL;
+}
+
 void
 stepper_save(const struct stepper *st, struct stepper_state *s)
 {
@@ -587,6 +628,7 @@ stepper_save(const struct stepper *st, struct stepper_state *s)
 	s->t = st->t;
 	s->dt = st->dt;
 	s->y = st->y;
+	s->hist = stepper_history(st);
 	s->hash = stepper_hash(st);
 	s->nodes = (size_t)st->net.cl.n;
 	s->dt_set = st->dt_set;
@@ -607,7 +649,8 @@ stepper_restore(struct stepper *st, const struct stepper_state *s, struct drape_
 	memcpy(st->y_next, s->y, 6 * (size_t)st->net.cl.n * sizeof *st->y);
 	st->y = st->y_next;
 	st->t = s->t;
-	if (stepper_hash(st) != s->hash) {
+	if (stepper_state_hash(st->y, s->hist, (size_t)st->net.cl.n, st->t) != s->hash ||
+	    (s->hist != NULL && st->in.kind != INTEG_BDF2)) {
 		st->y = keep;
 		st->t = t;
 		err_set(err, "the state saved at step %ld does not match its hash", s->step);
@@ -616,29 +659,36 @@ stepper_restore(struct stepper *st, const struct stepper_state *s, struct drape_
 	st->y_next = keep;
 	st->step = s->step;
 	st->dt = s->dt;
+	if (st->in.kind == INTEG_BDF2)
+		bdf2_set_history(&st->bd, s->hist);
 	/* the locks are counted from here: a keyframe holds no lock runs */
 	memset(st->lock_run, 0, (size_t)st->net.cl.n * sizeof *st->lock_run);
 	memset(&st->locks, 0, sizeof st->locks);
 	return 0;
 }
 
-uint64_t
-stepper_state_hash(const double *y, size_t nodes, double t)
+static uint64_t
+fnv1a(uint64_t h, const void *p, size_t len)
 {
-	const unsigned char *b = (const unsigned char *)y;
-	size_t len = 6 * nodes * sizeof *y, i;
-	uint64_t h = 0xcbf29ce484222325ULL;
+	const unsigned char *b = p;
+	size_t i;
 
 	for (i = 0; i < len; i++)
-		h = (h ^ b[i]) * 0x100000001b3ULL;
-	b = (const unsigned char *)&t;
-	for (i = 0; i < sizeof t; i++)
 		h = (h ^ b[i]) * 0x100000001b3ULL;
 	return h;
 }
 
 uint64_t
+stepper_state_hash(const double *y, const double *hist, size_t nodes, double t)
+{
+	uint64_t h = fnv1a(0xcbf29ce484222325ULL, y, 6 * nodes * sizeof *y);
+
+	h = fnv1a(h, &t, sizeof t);
+	return hist != NULL ? fnv1a(h, hist, 6 * nodes * sizeof *hist) : h;
+}
+
+uint64_t
 stepper_hash(const struct stepper *st)
 {
-	return stepper_state_hash(st->y, (size_t)st->net.cl.n, st->t);
+	return stepper_state_hash(st->y, stepper_history(st), (size_t)st->net.cl.n, st->t);
 }

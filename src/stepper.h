@@ -81,10 +81,12 @@ const struct network *stepper_network(const struct stepper *st);
 const double *stepper_x(const struct stepper *st);	/* 3n positions */
 const double *stepper_v(const struct stepper *st);	/* 3n velocities */
 void stepper_energy(const struct stepper *st, struct energy *e);
-/* FNV-1a over the state's bytes and the time: equal hashes, equal runs. */
+/* FNV-1a over the state's bytes and the time, and a multistep method's
+ * history after them: equal hashes, equal runs. */
 uint64_t stepper_hash(const struct stepper *st);
-/* The same of a state y (6 * nodes doubles) at time t. */
-uint64_t stepper_state_hash(const double *y, size_t nodes, double t);
+/* The same of a state y (6 * nodes doubles) at time t, with hist (the
+ * same size) or NULL. */
+uint64_t stepper_state_hash(const double *y, const double *hist, size_t nodes, double t);
 
 /* The geometry the collision stages see (cloth nodes, then obstacle mesh
  * vertices), for tests and audits. */
@@ -119,7 +121,8 @@ struct stepper_report {
 	bool dt_auto;
 	double omega;		/* the bound on the highest angular frequency */
 	long nfev, rejected;	/* explicit methods: force evaluations, rejected steps */
-	long solves, iters, unconverged;	/* implicit Euler: solves, CG iterations */
+	long solves, iters, unconverged;	/* implicit Euler, bdf2: solves, CG iterations */
+	long newton;		/* bdf2: Newton iterations */
 	long substeps;		/* fast: its substeps */
 	bool collisions;	/* anything to collide with */
 	bool uses_hash;		/* the broad phase fills a spatial hash */
@@ -140,6 +143,9 @@ struct stepper_state {
 	long step;
 	double t, dt;		/* dt: the step to try next */
 	const double *y;	/* positions (3n) then velocities (3n) */
+	/* a multistep method's (bdf2): the state one step back, as y, or
+	 * NULL (the first step, and the other methods) */
+	const double *hist;
 	uint64_t hash;		/* stepper_hash of it */
 	size_t nodes;		/* the run's node count (n) */
 	double dt_set;		/* and its scene's (or auto) step */
@@ -154,6 +160,7 @@ void stepper_save(const struct stepper *st, struct stepper_state *s);
 int stepper_restore(struct stepper *st, const struct stepper_state *s, struct drape_err *err);
 
 #define STEPPER_FAST_DT 0.01	/* s: dt = auto for the fast path */
+#define STEPPER_BDF2_DT 0.01	/* s: and for bdf2 */
 
 /* The step `dt = auto` picks for a scene (drape-scene(5) says how);
  * crossing is the time to cross a spacing at the fastest expected speed. */

@@ -291,7 +291,7 @@ round_trip_of(const char *path, bool stored, struct truth *tr)
 	if (replay_open(&r, path, &err) != 0)
 		fail_msg("replay_open: %s", err.msg);
 	replay_events_init(&re, &r, path);
-	assert_int_equal(r.hdr.version, 4);
+	assert_int_equal(r.hdr.version, REPLAY_VERSION);
 	assert_true(r.hdr.flags & REPLAY_CLOSED);
 	assert_int_equal(r.nbad, 0);
 	assert_false(r.cut);
@@ -414,7 +414,7 @@ lossy_round_trip(void **state)
 	rec_steps_per_chunk = 0;
 	if (replay_open(&r, lossy_path, &err) != 0)
 		fail_msg("replay_open: %s", err.msg);
-	assert_int_equal(r.hdr.version, 4);
+	assert_int_equal(r.hdr.version, REPLAY_VERSION);
 	replay_events_init(&re, &r, lossy_path);
 	n3 = 3 * (size_t)tr.n;
 	for (i = 0; i < r.nchunks; i++) {
@@ -771,7 +771,7 @@ move_keyframe(unsigned char *raw, size_t n, void *ctx)
 	assert_non_null(y);
 	memcpy(y, kf->y, n6 * sizeof *y);
 	y[1] += 1e-4;
-	hash = stepper_state_hash(y, n6 / 6, kf->t);
+	hash = stepper_state_hash(y, NULL, n6 / 6, kf->t);
 	memcpy(raw + 24, &hash, 8);
 	/* the doubles are byte-shuffled: byte b of double j at b * n6 + j */
 	for (size_t b = 0; b < 8; b++)
@@ -1379,7 +1379,7 @@ cli_precision(void **state)
 	snprintf(args, sizeof args, "info '%s'", out);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
-	assert_non_null(strstr(r.out, "(version 4, closed cleanly)"));
+	assert_non_null(strstr(r.out, "(version 5, closed cleanly)"));
 	assert_non_null(strstr(r.out, "6 at 200 per second, rounded to 1e-05 m (within 5e-06 m"));
 	snprintf(args, sizeof args, "export --pc2 '%s/lossy.pc2' '%s'", dir, out);
 	drape(&r, args);
@@ -1387,7 +1387,7 @@ cli_precision(void **state)
 	/* exact frames: no rounding said */
 	snprintf(args, sizeof args, "info '%s'", replay_path);
 	drape(&r, args);
-	assert_non_null(strstr(r.out, "(version 4, closed cleanly)"));
+	assert_non_null(strstr(r.out, "(version 5, closed cleanly)"));
 	assert_null(strstr(r.out, "rounded"));
 	for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
 		snprintf(args, sizeof args, "run --headless --precision '%s' --record '%s/bad.drr' '%s'",

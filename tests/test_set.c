@@ -145,7 +145,7 @@ word(void **state)
 	hash_of(args, b);
 	assert_string_equal(a, b);
 	refused("run --headless", "simulation.integrator=verlet", "integrator: expected rk4, euler, "
-	    "symplectic-euler, rk2, dopri5, implicit-euler or fast, got 'verlet'");
+	    "symplectic-euler, rk2, dopri5, implicit-euler, fast or bdf2, got 'verlet'");
 }
 
 static void

@@ -117,7 +117,7 @@ edit_state(struct stepper *st, void (*edit)(void *ctx, double *y, int n), void *
 	memcpy(y, s.y, 6 * (size_t)n * sizeof *y);
 	edit(ctx, y, n);
 	s.y = y;
-	s.hash = stepper_state_hash(y, (size_t)n, s.t);
+	s.hash = stepper_state_hash(y, s.hist, (size_t)n, s.t);
 	if (stepper_restore(st, &s, &err) != 0)
 		fail_msg("stepper_restore: %s", err.msg);
 	free(y);

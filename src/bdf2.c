@@ -1,0 +1,1050 @@
+/* bdf2.c: the implicit step (see bdf2.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bdf2.h"
+#include "collide.h"
+#include "contacts.h"
+#include "obstacle.h"
+#include "vec3.h"
+
+/* A penalty's stiffness over the inertia m / beta^2 of what it pushes: at
+ * 1000 a node resting on an obstacle sinks g beta^2 / 1000, 0.04 um at a
+ * 10 ms step, and the penalty is still a diagonal block the solve takes
+ * as easily as the springs. A pair couples four nodes across the
+ * cloth, which the preconditioner sees only in its diagonal blocks, so it
+ * is softer: 100 gives a layer under the cloth's own weight a sag of
+ * 0.4 um, a pile of ten layers 4 um, in a thickness of half a
+ * millimetre. */
+#define PENALTY_OBSTACLE 1000.0
+#define PENALTY_PAIR 100.0
+
+/* A node's clearance over an analytic obstacle, in cloth thicknesses: its
+ * penalty holds it this far out, so that the step ends outside. */
+#define OBSTACLE_CLEARANCE 0.25
+
+/* Friction's smoothing (IPC's epsilon_v): below this slip speed (m/s) a
+ * contact holds like a stiff spring instead of sliding. */
+#define FRICTION_SLIP 1e-3
+
+/* The Newton iterations' tolerance when the scene sets none, over
+ * gravity's magnitude (1 m/s^2 without gravity): the largest residual
+ * acceleration left, which changes a velocity by beta times it. */
+#define DEFAULT_TOL 1e-3
+
+/* Newton's iterations have converged once the step they ask changes no
+ * node's velocity by more than this (m/s; it moves the node that times
+ * beta), and that last step is taken: the residual's own tolerance is in
+ * accelerations, which a stiff contact's penalty makes large for a
+ * displacement of nanometres. Where the cloth buckles (compressed
+ * springs, sheared corners) the system's positive stand-in for the
+ * stiffness makes the convergence linear, at 0.5 to 0.9 an iteration. */
+#define NEWTON_VTOL 1e-4
+
+/* A conjugate gradients solve stops when its residual has fallen this far
+ * (inexact Newton: the outer iterations take up the rest). */
+#define CG_REDUCTION 1e-2
+
+static double
+norm3(const double *a)
+{
+	return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
+
+int
+bdf2_init(struct bdf2 *b, const struct scene *sc, const struct forces *fo,
+    const struct prescribed *pr, double tol)
+{
+	const struct cloth *cl = fo->cl;
+	size_t n3 = 3 * (size_t)cl->n;
+	double **v3s[] = { &b->xhat, &b->vhat, &b->target, &b->x, &b->g, &b->dx, &b->xtry, &b->f,
+	    &b->r, &b->z, &b->p, &b->q };
+	double gmag = v3_len(v3_load(sc->gravity));
+	size_t i;
+
+	memset(b, 0, sizeof *b);
+	b->sc = sc;
+	b->fo = fo;
+	b->pr = pr;
+	b->tol = (tol > 0 ? tol : DEFAULT_TOL) * (gmag > 0 ? gmag : 1);
+	b->max_newton = 40;
+	b->max_cg = 400;
+	if (jacobian_init(&b->jc, fo) != 0 || blockmat_init_cloth(&b->H, cl) != 0)
+		goto oom;
+	for (i = 0; i < sizeof v3s / sizeof v3s[0]; i++)
+		if ((*v3s[i] = malloc((n3 + 1) * sizeof(double))) == NULL)
+			goto oom;
+	if ((b->hist = malloc((2 * n3 + 1) * sizeof *b->hist)) == NULL ||
+	    (b->pre = malloc((3 * n3 + 1) * sizeof *b->pre)) == NULL ||
+	    (b->rdir = malloc((3 * n3 + 1) * sizeof *b->rdir)) == NULL ||
+	    (b->nreset = calloc((size_t)cl->n + 1, 1)) == NULL ||
+	    (b->udamp = malloc((3 * cl->nsprings + 1) * sizeof *b->udamp)) == NULL)
+		goto oom;
+	return 0;
+oom:
+	bdf2_free(b);
+	return -1;
+}
+
+void
+bdf2_free(struct bdf2 *b)
+{
+	double *v[] = { b->xhat, b->vhat, b->target, b->x, b->g, b->dx, b->xtry, b->f, b->r, b->z,
+	    b->p, b->q, b->hist, b->pre, b->rdir, b->udamp };
+	size_t i;
+
+	jacobian_free(&b->jc);
+	blockmat_free(&b->H);
+	for (i = 0; i < sizeof v / sizeof v[0]; i++)
+		free(v[i]);
+	free(b->nreset);
+	free(b->oc);
+	free(b->pt);
+	memset(b, 0, sizeof *b);
+}
+
+void
+bdf2_set_stop(struct bdf2 *b, const volatile sig_atomic_t *flag)
+{
+	b->stop = flag;
+}
+
+static bool
+held(const struct bdf2 *b, int p)
+{
+	return b->pr->held != NULL && b->pr->held[p];
+}
+
+/* Two unit vectors across n. */
+static void
+tangents(vec3 n, double *t)
+{
+	vec3 a = fabs(n.x) < 0.6 ? v3(1, 0, 0) : v3(0, 1, 0), t1, t2;
+
+	t1 = v3_madd(a, n, -v3_dot(a, n));
+	t1 = v3_scale(t1, 1 / v3_len(t1));
+	t2 = v3_cross(n, t1);
+	v3_store(t, t1);
+	v3_store(t + 3, t2);
+}
+
+/* ---- the step's setup ---- */
+
+/* The formula's terms: beta, xhat, vhat and the inertial target xhat +
+ * beta vhat; BDF1 (backward Euler) without a history. */
+static void
+set_formula(struct bdf2 *b, double h, const double *y)
+{
+	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
+	const double *xp = b->hist, *vp = b->hist + n3;
+
+	b->beta = b->has_hist ? 2 * h / 3 : h;
+	for (i = 0; i < n3; i++) {
+		if (b->has_hist) {
+			b->xhat[i] = (4 * y[i] - xp[i]) / 3;
+			b->vhat[i] = (4 * y[n3 + i] - vp[i]) / 3;
+		} else {
+			b->xhat[i] = y[i];
+			b->vhat[i] = y[n3 + i];
+		}
+		b->target[i] = b->xhat[i] + b->beta * b->vhat[i];
+	}
+}
+
+static int
+add_obstacle_contact(struct bdf2 *b, const struct bdf2_obstacle_contact *c)
+{
+	if (b->noc == b->occap) {
+		size_t cap = b->occap ? 2 * b->occap : 64;
+		struct bdf2_obstacle_contact *p = realloc(b->oc, cap * sizeof *p);
+
+		if (p == NULL)
+			return -1;
+		b->oc = p;
+		b->occap = cap;
+	}
+	b->oc[b->noc++] = *c;
+	return 0;
+}
+
+/* The nodes within reach of an analytic obstacle over the step: nearer
+ * at its start than the clearance and a thickness, with twice the motion
+ * the target asks for. Their surface's tangents there are friction's. */
+static int
+find_obstacle_contacts(struct bdf2 *b, const double *x0)
+{
+	const struct scene *sc = b->sc;
+	const struct cloth *cl = b->fo->cl;
+	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness;
+	size_t o;
+	int p;
+
+	b->noc = 0;
+	for (o = 0; o < sc->nobstacles; o++) {
+		const struct obstacle *ob = &sc->obstacles[o];
+		vec3 lo, hi;
+
+		if (ob->kind == OBSTACLE_MESH)
+			continue;
+		obstacle_bounds(ob, &lo, &hi);
+		for (p = 0; p < cl->n; p++) {
+			vec3 xp = v3_load(x0 + 3 * p), q, n;
+			double move = v3_len(v3_sub(v3_load(b->target + 3 * p), xp));
+			double reach = clear + sc->mat.thickness + 2 * move, d;
+			struct bdf2_obstacle_contact c;
+
+			if (held(b, p) || xp.x < lo.x - reach || xp.y < lo.y - reach ||
+			    xp.z < lo.z - reach || xp.x > hi.x + reach || xp.y > hi.y + reach ||
+			    xp.z > hi.z + reach)
+				continue;
+			if ((d = obstacle_distance(ob, xp, &q, &n)) >= reach)
+				continue;
+			memset(&c, 0, sizeof c);
+			c.node = p;
+			c.obstacle = (int)o;
+			/* the plane through the nearest point, across the line to
+			 * it: the solid is convex, so all of it lies behind */
+			v3_store(c.n, n);
+			v3_store(c.q, q);
+			c.k = PENALTY_OBSTACLE * cl->mass[p] / (b->beta * b->beta);
+			c.mu = ob->friction;
+			tangents(n, c.tan);
+			if (add_obstacle_contact(b, &c) != 0)
+				return -1;
+		}
+	}
+	return 0;
+}
+
+/* The pairs' terms: a penalty stiffness by the pair's mass and tangents
+ * of its plane. */
+static int
+set_pairs(struct bdf2 *b)
+{
+	const struct cloth *cl = b->fo->cl;
+	size_t i;
+
+	if (b->ct == NULL)
+		return 0;
+	if (b->ct->n > b->ptcap) {
+		struct bdf2_pair_term *p = realloc(b->pt, b->ct->n * sizeof *p);
+
+		if (p == NULL)
+			return -1;
+		b->pt = p;
+		b->ptcap = b->ct->n;
+	}
+	for (i = 0; i < b->ct->n; i++) {
+		const struct contact_pair *cp = &b->ct->pair[i];
+		double inv = 0;
+		int k;
+
+		for (k = 0; k < 4; k++)
+			if (cp->vert[k] < b->col->ncloth && !held(b, cp->vert[k]))
+				inv += cp->w[k] * cp->w[k] / cl->mass[cp->vert[k]];
+		memset(&b->pt[i], 0, sizeof b->pt[i]);
+		b->pt[i].k = inv > 0 ? PENALTY_PAIR / (inv * b->beta * b->beta) : 0;
+		tangents(v3_load(cp->n0), b->pt[i].tan);
+	}
+	return 0;
+}
+
+/* ---- the potential ---- */
+
+/* Where vertex v of the pairs' geometry is: a cloth node's in x, a
+ * mesh's in col (they never move). */
+static vec3
+vertex(const struct bdf2 *b, const double *x, int v)
+{
+	return v3_load(v < b->col->ncloth ? x + 3 * v : b->col->x0 + 3 * v);
+}
+
+/* A pair's separation sum w x along n0, and its relative motion over the
+ * step sum w (x - x0). */
+static double
+pair_gap(const struct bdf2 *b, const struct contact_pair *cp, const double *x, const double *x0,
+    vec3 *rel)
+{
+	vec3 n = v3_load(cp->n0), s = v3(0, 0, 0), m = v3(0, 0, 0);
+	int k;
+
+	for (k = 0; k < 4; k++) {
+		vec3 p = vertex(b, x, cp->vert[k]);
+
+		s = v3_madd(s, p, cp->w[k]);
+		if (cp->vert[k] < b->col->ncloth)
+			m = v3_madd(m, v3_sub(p, v3_load(x0 + 3 * cp->vert[k])), cp->w[k]);
+	}
+	if (rel != NULL)
+		*rel = m;
+	return v3_dot(s, n);
+}
+
+/* IPC's f0 (the smoothed |u|) and f1(s)/s, for a slip s over eps. */
+static double
+friction_f0(double s, double eps)
+{
+	return s >= eps ? s : -s * s * s / (3 * eps * eps) + s * s / eps + eps / 3;
+}
+
+static double
+friction_f1_over_s(double s, double eps)
+{
+	return s >= eps ? 1 / s : -s / (eps * eps) + 2 / eps;
+}
+
+/* An obstacle contact's distance at x, from the plane of its surface at
+ * the step's start. */
+static double
+plane_distance(const struct bdf2_obstacle_contact *c, const double *x)
+{
+	return v3_dot(v3_sub(v3_load(x + 3 * c->node), v3_load(c->q)), v3_load(c->n));
+}
+
+/* The normal forces of the iterate x, which friction takes as given
+ * (lagged) while the line search looks along a direction. */
+static void
+lag_normal_forces(struct bdf2 *b, const double *x)
+{
+	const struct scene *sc = b->sc;
+	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness;
+	size_t i;
+
+	for (i = 0; i < b->noc; i++) {
+		struct bdf2_obstacle_contact *c = &b->oc[i];
+		double d = plane_distance(c, x);
+
+		c->lambda = d < clear ? c->k * (clear - d) : 0;
+	}
+	if (b->ct == NULL)
+		return;
+	for (i = 0; i < b->ct->n; i++) {
+		double gap = pair_gap(b, &b->ct->pair[i], x, b->x0, NULL);
+
+		b->pt[i].lambda = gap < b->ct->thickness ? b->pt[i].k * (b->ct->thickness - gap) : 0;
+	}
+}
+
+/* The dashpots (spring_damping): each spring's relative velocity along its
+ * direction at the step's start, (x - xhat)/beta for v, a quadratic in x
+ * whose gradient is the dashpot force C v. */
+static double
+dashpots(const struct bdf2 *b, const double *x, double *g)
+{
+	const struct cloth *cl = b->fo->cl;
+	double c = b->fo->spring_damping / b->beta, e = 0;
+	size_t s;
+
+	if (!(b->fo->spring_damping > 0))
+		return 0;
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		vec3 u = v3_load(b->udamp + 3 * s);
+		vec3 da = v3_sub(v3_load(x + 3 * sp->a), v3_load(b->xhat + 3 * sp->a));
+		vec3 db = v3_sub(v3_load(x + 3 * sp->b), v3_load(b->xhat + 3 * sp->b));
+		double rel = v3_dot(u, v3_sub(db, da)), k = c * sp->k;
+
+		e += 0.5 * k * rel * rel;
+		if (g != NULL) {
+			v3_addto(g + 3 * sp->b, v3_scale(u, k * rel));
+			v3_addto(g + 3 * sp->a, v3_scale(u, -k * rel));
+		}
+	}
+	return e;
+}
+
+/* The analytic obstacles' penalties and friction at x. */
+static double
+obstacle_terms(struct bdf2 *b, const double *x, double *g)
+{
+	const struct scene *sc = b->sc;
+	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness, eps = FRICTION_SLIP * b->beta, e = 0;
+	size_t i;
+
+	for (i = 0; i < b->noc; i++) {
+		struct bdf2_obstacle_contact *c = &b->oc[i];
+		vec3 xp = v3_load(x + 3 * c->node), n = v3_load(c->n), du;
+		double d = plane_distance(c, x);
+
+		if (d < clear) {
+			e += 0.5 * c->k * (clear - d) * (clear - d);
+			if (g != NULL)
+				v3_addto(g + 3 * c->node, v3_scale(n, -c->k * (clear - d)));
+		}
+		if (c->mu > 0 && c->lambda > 0) {
+			double u0, u1, s, ml = c->mu * c->lambda;
+
+			du = v3_sub(xp, v3_load(b->x0 + 3 * c->node));
+			u0 = v3_dot(du, v3_load(c->tan));
+			u1 = v3_dot(du, v3_load(c->tan + 3));
+			s = sqrt(u0 * u0 + u1 * u1);
+			e += ml * friction_f0(s, eps);
+			if (g != NULL) {
+				double f = ml * friction_f1_over_s(s, eps);
+
+				v3_addto(g + 3 * c->node, v3_add(v3_scale(v3_load(c->tan), f * u0),
+				    v3_scale(v3_load(c->tan + 3), f * u1)));
+			}
+		}
+	}
+	return e;
+}
+
+/* The pairs' penalties and friction at x. */
+static double
+pair_terms(struct bdf2 *b, const double *x, double *g)
+{
+	double eps = FRICTION_SLIP * b->beta, e = 0;
+	size_t i;
+
+	if (b->ct == NULL)
+		return 0;
+	for (i = 0; i < b->ct->n; i++) {
+		const struct contact_pair *cp = &b->ct->pair[i];
+		struct bdf2_pair_term *pt = &b->pt[i];
+		vec3 rel, n = v3_load(cp->n0), push = v3(0, 0, 0);
+		double gap = pair_gap(b, cp, x, b->x0, &rel), u0, u1, s;
+		int k;
+
+		if (gap < b->ct->thickness) {
+			double over = b->ct->thickness - gap;
+
+			e += 0.5 * pt->k * over * over;
+			push = v3_scale(n, -pt->k * over);
+		}
+		if (cp->mu > 0 && pt->lambda > 0) {
+			double ml = cp->mu * pt->lambda, f;
+
+			u0 = v3_dot(rel, v3_load(pt->tan));
+			u1 = v3_dot(rel, v3_load(pt->tan + 3));
+			s = sqrt(u0 * u0 + u1 * u1);
+			e += ml * friction_f0(s, eps);
+			f = ml * friction_f1_over_s(s, eps);
+			push = v3_add(push, v3_add(v3_scale(v3_load(pt->tan), f * u0),
+			    v3_scale(v3_load(pt->tan + 3), f * u1)));
+		}
+		if (g == NULL)
+			continue;
+		for (k = 0; k < 4; k++)
+			if (cp->vert[k] < b->col->ncloth)
+				v3_addto(g + 3 * cp->vert[k], v3_scale(push, cp->w[k]));
+	}
+	return e;
+}
+
+/* Phi at x, and its gradient into g when g is not NULL (held nodes' parts
+ * zero: they do not move in the solve). */
+static double
+potential(struct bdf2 *b, const double *x, double *g)
+{
+	const struct forces *fo = b->fo;
+	const struct cloth *cl = fo->cl;
+	double ib2 = 1 / (b->beta * b->beta), cd = fo->damping / b->beta, e;
+	vec3 grav = v3_load(fo->g);
+	int p, l, k;
+
+	e = forces_elastic(fo, x, g);	/* g holds the elastic forces for now */
+	if (g != NULL)
+		for (p = 0; p < 3 * cl->n; p++)
+			g[p] = -g[p];
+	for (p = 0; p < cl->n; p++) {
+		vec3 xp = v3_load(x + 3 * p), d = v3_sub(xp, v3_load(b->target + 3 * p));
+		vec3 dh = v3_sub(xp, v3_load(b->xhat + 3 * p));
+		double m = cl->mass[p];
+
+		e += 0.5 * m * ib2 * v3_dot(d, d) + 0.5 * m * cd * v3_dot(dh, dh) -
+		    m * v3_dot(grav, xp);
+		if (g != NULL)
+			v3_addto(g + 3 * p, v3_sub(v3_add(v3_scale(d, m * ib2), v3_scale(dh, m * cd)),
+			    v3_scale(grav, m)));
+	}
+	for (l = 0; l < fo->nloads; l++) {
+		const struct load_group *lg = &fo->loads[l];
+
+		if (!(b->t1 >= lg->start && b->t1 < lg->stop))
+			continue;
+		for (k = 0; k < lg->n; k++) {
+			e -= v3_dot(v3_load(lg->f), v3_load(x + 3 * lg->node[k]));
+			if (g != NULL)
+				v3_addto(g + 3 * lg->node[k], v3_neg(v3_load(lg->f)));
+		}
+	}
+	e += dashpots(b, x, g);
+	e += obstacle_terms(b, x, g);
+	e += pair_terms(b, x, g);
+	if (g != NULL)
+		for (p = 0; p < cl->n; p++)
+			if (held(b, p))
+				g[3 * p] = g[3 * p + 1] = g[3 * p + 2] = 0;
+	return e;
+}
+
+/* ---- the Newton system ---- */
+
+/* H's diagonal block of node p += s a b^T. */
+static void
+add_diag(struct bdf2 *b, int p, vec3 u, vec3 w, double s)
+{
+	double *blk = b->H.val + 9 * (size_t)b->H.diag[p], a[3] = { u.x, u.y, u.z };
+	double c[3] = { w.x, w.y, w.z };
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			blk[3 * i + j] += s * a[i] * c[j];
+}
+
+/* Friction's stiffness across a contact at slip (u0, u1): mu lambda
+ * f1(s)/s on the tangent plane, the positive semidefinite part of its
+ * Hessian (IPC's). */
+static double
+friction_stiffness(double ml, double u0, double u1, double eps)
+{
+	return ml > 0 ? ml * friction_f1_over_s(sqrt(u0 * u0 + u1 * u1), eps) : 0;
+}
+
+/* The contacts' stiffness at the iterate x: the obstacles' blocks into H,
+ * the pairs' kept by pair (their diagonal blocks into H too, for the
+ * preconditioner; pair_mul adds the rest). */
+static void
+assemble_contacts(struct bdf2 *b, const double *x)
+{
+	const struct scene *sc = b->sc;
+	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness, eps = FRICTION_SLIP * b->beta;
+	size_t i;
+	int k;
+
+	for (i = 0; i < b->noc; i++) {
+		struct bdf2_obstacle_contact *c = &b->oc[i];
+		vec3 xp = v3_load(x + 3 * c->node), n = v3_load(c->n), du, t0 = v3_load(c->tan);
+		vec3 t1 = v3_load(c->tan + 3);
+		double d = plane_distance(c, x);
+
+		if (d < clear)
+			add_diag(b, c->node, n, n, c->k);
+		du = v3_sub(xp, v3_load(b->x0 + 3 * c->node));
+		c->fric = friction_stiffness(c->mu * c->lambda, v3_dot(du, t0), v3_dot(du, t1), eps);
+		if (c->fric > 0) {
+			add_diag(b, c->node, t0, t0, c->fric);
+			add_diag(b, c->node, t1, t1, c->fric);
+		}
+	}
+	if (b->ct == NULL)
+		return;
+	for (i = 0; i < b->ct->n; i++) {
+		const struct contact_pair *cp = &b->ct->pair[i];
+		struct bdf2_pair_term *pt = &b->pt[i];
+		vec3 rel, n = v3_load(cp->n0), t0 = v3_load(pt->tan), t1 = v3_load(pt->tan + 3);
+
+		pt->gap = pair_gap(b, cp, x, b->x0, &rel);
+		pt->fric = friction_stiffness(cp->mu * pt->lambda, v3_dot(rel, t0), v3_dot(rel, t1), eps);
+		for (k = 0; k < 4; k++) {
+			int v = cp->vert[k];
+			double w2 = cp->w[k] * cp->w[k];
+
+			if (v >= b->col->ncloth || held(b, v))
+				continue;
+			if (pt->gap < b->ct->thickness)
+				add_diag(b, v, n, n, pt->k * w2);
+			if (pt->fric > 0) {
+				add_diag(b, v, t0, t0, pt->fric * w2);
+				add_diag(b, v, t1, t1, pt->fric * w2);
+			}
+		}
+	}
+}
+
+/* The dashpots' blocks: (spring_damping k / beta) u u^T a spring. */
+static void
+assemble_dashpots(struct bdf2 *b)
+{
+	const struct cloth *cl = b->fo->cl;
+	double c = b->fo->spring_damping / b->beta;
+	size_t s;
+
+	if (!(b->fo->spring_damping > 0))
+		return;
+	for (s = 0; s < cl->nsprings; s++) {
+		const struct spring *sp = &cl->springs[s];
+		vec3 u = v3_load(b->udamp + 3 * s);
+		int ends[2] = { sp->a, sp->b }, e;
+
+		for (e = 0; e < 2; e++) {
+			double *d = b->H.val + 9 * (size_t)b->H.diag[ends[e]];
+			double *o = b->H.val + 9 * (size_t)b->H.spring_slot[2 * s + e];
+			double a[3] = { u.x, u.y, u.z };
+			int i, j;
+
+			for (i = 0; i < 3; i++)
+				for (j = 0; j < 3; j++) {
+					d[3 * i + j] += c * sp->k * a[i] * a[j];
+					o[3 * i + j] -= c * sp->k * a[i] * a[j];
+				}
+		}
+	}
+}
+
+/* H at x: the elements' stiffness, the inertia and mass damping on the
+ * diagonal, the dashpots, the contacts; a held node's row and column
+ * decoupled (its diagonal block the inertia alone). */
+static void
+assemble(struct bdf2 *b, const double *x)
+{
+	const struct cloth *cl = b->fo->cl;
+	double ib = 1 / (b->beta * b->beta) + b->fo->damping / b->beta;
+	int p, k, i;
+
+	blockmat_zero(&b->H);
+	jacobian_eval(&b->jc, x);
+	jacobian_assemble(&b->jc, 1, 0, &b->H);
+	assemble_dashpots(b);
+	for (p = 0; p < cl->n; p++) {
+		double *d = b->H.val + 9 * (size_t)b->H.diag[p];
+
+		for (i = 0; i < 3; i++)
+			d[4 * i] += cl->mass[p] * ib;
+	}
+	assemble_contacts(b, x);
+	if (b->pr->nnodes == 0)
+		return;
+	for (p = 0; p < cl->n; p++)
+		for (k = b->H.start[p]; k < b->H.start[p + 1]; k++) {
+			double *blk = b->H.val + 9 * (size_t)k;
+
+			if (!held(b, p) && !held(b, b->H.col[k]))
+				continue;
+			memset(blk, 0, 9 * sizeof *blk);
+			if (b->H.col[k] == p)
+				for (i = 0; i < 3; i++)
+					blk[4 * i] = cl->mass[p] / (b->beta * b->beta);
+		}
+}
+
+/* out += the pairs' coupling between different nodes (their diagonal
+ * blocks are in H): k a a^T for the penalty, a = (w_k n0), and the same
+ * across the tangents for friction. */
+static void
+pair_mul(const struct bdf2 *b, const double *p, double *out)
+{
+	size_t i;
+	int k;
+
+	if (b->ct == NULL)
+		return;
+	for (i = 0; i < b->ct->n; i++) {
+		const struct contact_pair *cp = &b->ct->pair[i];
+		const struct bdf2_pair_term *pt = &b->pt[i];
+		vec3 n = v3_load(cp->n0), t0 = v3_load(pt->tan), t1 = v3_load(pt->tan + 3);
+		double kn = pt->gap < b->ct->thickness ? pt->k : 0, sn = 0, s0 = 0, s1 = 0;
+
+		if (kn == 0 && pt->fric == 0)
+			continue;
+		for (k = 0; k < 4; k++) {
+			int v = cp->vert[k];
+			vec3 pv;
+
+			if (v >= b->col->ncloth || held(b, v))
+				continue;
+			pv = v3_load(p + 3 * v);
+			sn += cp->w[k] * v3_dot(n, pv);
+			s0 += cp->w[k] * v3_dot(t0, pv);
+			s1 += cp->w[k] * v3_dot(t1, pv);
+		}
+		for (k = 0; k < 4; k++) {
+			int v = cp->vert[k];
+			vec3 pv, o;
+			double w = cp->w[k];
+
+			if (v >= b->col->ncloth || held(b, v))
+				continue;
+			pv = v3_load(p + 3 * v);
+			/* the whole product less the node's own block */
+			o = v3_scale(n, kn * w * (sn - w * v3_dot(n, pv)));
+			o = v3_madd(o, t0, pt->fric * w * (s0 - w * v3_dot(t0, pv)));
+			o = v3_madd(o, t1, pt->fric * w * (s1 - w * v3_dot(t1, pv)));
+			v3_addto(out + 3 * v, o);
+		}
+	}
+}
+
+static void
+system_mul(const struct bdf2 *b, const double *p, double *out)
+{
+	blockmat_mul(&b->H, p, out);
+	pair_mul(b, p, out);
+}
+
+/* b <- b^-1 for a symmetric positive definite 3 x 3 block. */
+static void
+invert3(double *m)
+{
+	double c0 = m[4] * m[8] - m[5] * m[7], c1 = m[5] * m[6] - m[3] * m[8];
+	double c2 = m[3] * m[7] - m[4] * m[6], det = m[0] * c0 + m[1] * c1 + m[2] * c2;
+	double r[9] = { c0, m[2] * m[7] - m[1] * m[8], m[1] * m[5] - m[2] * m[4],
+	    c1, m[0] * m[8] - m[2] * m[6], m[2] * m[3] - m[0] * m[5],
+	    c2, m[1] * m[6] - m[0] * m[7], m[0] * m[4] - m[1] * m[3] };
+	int i;
+
+	for (i = 0; i < 9; i++)
+		m[i] = r[i] / det;
+}
+
+static void
+precondition_setup(struct bdf2 *b)
+{
+	int p;
+
+	for (p = 0; p < b->H.n; p++) {
+		memcpy(b->pre + 9 * p, b->H.val + 9 * (size_t)b->H.diag[p], 9 * sizeof *b->pre);
+		invert3(b->pre + 9 * p);
+	}
+}
+
+static void
+precondition(const struct bdf2 *b, const double *r, double *z)
+{
+	int p;
+
+	for (p = 0; p < b->H.n; p++) {
+		const double *m = b->pre + 9 * p, *rp = r + 3 * p;
+
+		z[3 * p] = m[0] * rp[0] + m[1] * rp[1] + m[2] * rp[2];
+		z[3 * p + 1] = m[3] * rp[0] + m[4] * rp[1] + m[5] * rp[2];
+		z[3 * p + 2] = m[6] * rp[0] + m[7] * rp[1] + m[8] * rp[2];
+	}
+}
+
+static double
+dot(const double *a, const double *c, size_t n)
+{
+	double s = 0;
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		s += a[i] * c[i];
+	return s;
+}
+
+static bool
+stop_asked(struct bdf2 *b)
+{
+	if (b->stop != NULL && *b->stop)
+		b->stopped = true;
+	return b->stopped;
+}
+
+/* dx = -H^-1 g by preconditioned conjugate gradients, to a residual
+ * CG_REDUCTION of the start's (in the preconditioner's norm). Returns the
+ * iterations. */
+static int
+solve(struct bdf2 *b)
+{
+	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
+	double rz, stop2;
+	int it;
+
+	memset(b->dx, 0, n3 * sizeof *b->dx);
+	for (i = 0; i < n3; i++)
+		b->r[i] = -b->g[i];
+	precondition(b, b->r, b->z);
+	memcpy(b->p, b->z, n3 * sizeof *b->p);
+	rz = dot(b->r, b->z, n3);
+	stop2 = CG_REDUCTION * CG_REDUCTION * rz;
+	for (it = 0; it < b->max_cg && rz > stop2; it++) {
+		double pq, alpha, rz_new, beta;
+
+		if ((it & 15) == 15 && stop_asked(b))
+			break;
+		system_mul(b, b->p, b->q);
+		pq = dot(b->p, b->q, n3);
+		if (!(pq > 0)) {
+			/* negative curvature (Steihaug): the iterate so far, or
+			 * the preconditioned gradient on the first */
+			if (it == 0)
+				memcpy(b->dx, b->z, n3 * sizeof *b->dx);
+			break;
+		}
+		alpha = rz / pq;
+		for (i = 0; i < n3; i++) {
+			b->dx[i] += alpha * b->p[i];
+			b->r[i] -= alpha * b->q[i];
+		}
+		precondition(b, b->r, b->z);
+		rz_new = dot(b->r, b->z, n3);
+		beta = rz_new / rz;
+		rz = rz_new;
+		for (i = 0; i < n3; i++)
+			b->p[i] = b->z[i] + beta * b->p[i];
+	}
+	return it;
+}
+
+/* The largest residual acceleration |g_p| / m_p over the free nodes. */
+static double
+residual(const struct bdf2 *b)
+{
+	const struct cloth *cl = b->fo->cl;
+	double worst = 0;
+	int p;
+
+	for (p = 0; p < cl->n; p++) {
+		double a = norm3(b->g + 3 * p) / cl->mass[p];
+
+		worst = a > worst ? a : worst;
+	}
+	return worst;
+}
+
+/* ---- the step ---- */
+
+/* The largest of n 3-vectors' lengths. */
+static double
+max_node_norm(const double *a, size_t n)
+{
+	double worst = 0;
+	size_t p;
+
+	for (p = 0; p < n; p++) {
+		double l = norm3(a + 3 * p);
+
+		worst = l > worst ? l : worst;
+	}
+	return worst;
+}
+
+/* A full step taken, Phi fell to phi1 along dx: where the parabola through
+ * phi0 (slope g.dx) and phi1 has its least is farther on when the
+ * system's stand-in overstates the curvature along dx, as it does where
+ * the cloth buckles (its compressed springs and sheared corners soften
+ * there, jacobian.h). There, up to EXTRAPOLATE_MOST times the step is
+ * tried, and taken into xtry if it lowers Phi more. */
+#define EXTRAPOLATE_MOST 4.0
+static void
+extrapolate(struct bdf2 *b, double phi0, double slope, double phi1)
+{
+	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
+	double curv = 2 * (phi1 - phi0 - slope), best, phi;
+
+	if (!(curv > 0) || (best = -slope / curv) < 1.25)
+		return;
+	best = best < EXTRAPOLATE_MOST ? best : EXTRAPOLATE_MOST;
+	for (i = 0; i < n3; i++)
+		b->r[i] = b->x[i] + best * b->dx[i];
+	if ((phi = potential(b, b->r, NULL)) < phi1)
+		memcpy(b->xtry, b->r, n3 * sizeof *b->xtry);
+}
+
+/* Along dx from x (where Phi is phi0, its slope g.dx): the longest step
+ * of 1, 1/2, 1/4, ... that lowers Phi enough (Armijo's rule), into x.
+ * false, x unchanged, when none does. */
+static bool
+line_search(struct bdf2 *b, double phi0)
+{
+	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
+	double slope = dot(b->g, b->dx, n3), alpha = 1, phi;
+	int cut;
+
+	if (!(slope < 0)) {	/* not downhill (roundoff): the preconditioned gradient */
+		precondition(b, b->g, b->dx);
+		for (i = 0; i < n3; i++)
+			b->dx[i] = -b->dx[i];
+		slope = dot(b->g, b->dx, n3);
+	}
+	for (cut = 0; cut < 30; cut++, alpha *= 0.5) {
+		for (i = 0; i < n3; i++)
+			b->xtry[i] = b->x[i] + alpha * b->dx[i];
+		phi = potential(b, b->xtry, NULL);
+		if (phi <= phi0 + 1e-4 * alpha * slope) {
+			if (cut == 0)
+				extrapolate(b, phi0, slope, phi);
+			memcpy(b->x, b->xtry, n3 * sizeof *b->x);
+			b->cuts += cut;
+			return true;
+		}
+	}
+	b->cuts += cut;
+	return false;
+}
+
+/* The reset directions: every contact that pushes at the step's end
+ * state, its normal, for the node (or the pair's cloth nodes). */
+static void
+add_reset(struct bdf2 *b, int p, vec3 n)
+{
+	double len;
+	int k;
+
+	if (b->nreset[p] >= 3)
+		return;
+	for (k = 0; k < b->nreset[p]; k++) {	/* Gram-Schmidt */
+		vec3 e = v3_load(b->rdir + 9 * p + 3 * k);
+
+		n = v3_madd(n, e, -v3_dot(n, e));
+	}
+	if ((len = v3_len(n)) < 0.1)
+		return;
+	v3_store(b->rdir + 9 * p + 3 * b->nreset[p]++, v3_scale(n, 1 / len));
+}
+
+static void
+find_resets(struct bdf2 *b)
+{
+	const struct scene *sc = b->sc;
+	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness;
+	size_t i;
+	int k;
+
+	memset(b->nreset, 0, (size_t)b->fo->cl->n);
+	for (i = 0; i < b->noc; i++) {
+		struct bdf2_obstacle_contact *c = &b->oc[i];
+
+		c->phi = plane_distance(c, b->x);
+		if (c->phi < clear)
+			add_reset(b, c->node, v3_load(c->n));
+	}
+	if (b->ct == NULL)
+		return;
+	for (i = 0; i < b->ct->n; i++) {
+		const struct contact_pair *cp = &b->ct->pair[i];
+
+		b->pt[i].gap = pair_gap(b, cp, b->x, b->x0, NULL);
+		if (b->pt[i].gap >= b->ct->thickness)
+			continue;
+		for (k = 0; k < 4; k++)
+			if (cp->vert[k] < b->col->ncloth && !held(b, cp->vert[k]) && cp->w[k] != 0)
+				add_reset(b, cp->vert[k], v3_load(cp->n0));
+	}
+}
+
+void
+bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
+    struct contacts *ct, const struct collide *col)
+{
+	const struct cloth *cl = b->fo->cl;
+	size_t n3 = 3 * (size_t)cl->n, s, i;
+	double phi;
+	bool converged = false;
+	int it;
+
+	b->stopped = false;
+	b->t1 = t + h;
+	b->x0 = y;
+	b->ct = ct != NULL && ct->n > 0 ? ct : NULL;
+	b->col = col;
+	set_formula(b, h, y);
+	for (s = 0; s < cl->nsprings; s++) {	/* the dashpots' directions */
+		const struct spring *sp = &cl->springs[s];
+		vec3 d = v3_sub(v3_load(y + 3 * sp->b), v3_load(y + 3 * sp->a));
+		double len = v3_len(d);
+
+		v3_store(b->udamp + 3 * s, len > 0 ? v3_scale(d, 1 / len) : v3(0, 0, 0));
+	}
+	if (find_obstacle_contacts(b, y) != 0 || set_pairs(b) != 0) {
+		b->stopped = true;	/* out of memory: the caller sees a step given up */
+		return;
+	}
+	/* from the inertial target, the held nodes where they go */
+	memcpy(b->x, b->target, n3 * sizeof *b->x);
+	prescribed_apply(b->pr, cl, b->t1, b->x, NULL);
+	for (it = 0; it < b->max_newton; it++) {
+		if (stop_asked(b))
+			return;
+		lag_normal_forces(b, b->x);
+		phi = potential(b, b->x, b->g);
+		b->last_residual = residual(b);
+		if (b->last_residual <= b->tol)
+			break;
+		assemble(b, b->x);
+		precondition_setup(b);
+		b->last_cg = solve(b);
+		b->cg += b->last_cg;
+		if (stop_asked(b))
+			return;
+		if ((b->last_step = max_node_norm(b->dx, n3 / 3)) <= NEWTON_VTOL * b->beta) {
+			for (i = 0; i < n3; i++)	/* too small to search along */
+				b->x[i] += b->dx[i];
+			converged = true;
+			it++;
+			break;
+		}
+		if (!line_search(b, phi))
+			break;	/* no descent left: as far as roundoff allows */
+	}
+	b->last_newton = it;
+	b->newton += it;
+	b->steps++;
+	if (!converged && b->last_residual > b->tol)
+		b->unconverged++;
+	find_resets(b);
+	for (i = 0; i < n3; i++) {
+		y_out[i] = b->x[i];
+		y_out[n3 + i] = (b->x[i] - b->xhat[i]) / b->beta;
+	}
+}
+
+int
+bdf2_events(struct bdf2 *b, struct collide *col, long step, const double *y1)
+{
+	const struct cloth *cl = b->fo->cl;
+	double clear = OBSTACLE_CLEARANCE * b->sc->mat.thickness;
+	size_t n3 = 3 * (size_t)cl->n, i;
+
+	for (i = 0; i < b->noc; i++) {
+		const struct bdf2_obstacle_contact *c = &b->oc[i];
+		vec3 n = v3_load(c->n);
+		double after, force;
+
+		if (!(c->phi < clear))
+			continue;
+		/* the penalty's force acted over the step through beta (the
+		 * formula's v = vhat + beta F/m): that is its impulse */
+		force = c->k * (clear - c->phi);
+		after = v3_dot(v3_load(y1 + n3 + 3 * c->node), n);
+		if (collide_add_event(col, step, c->node, CONTACT_OBSTACLE, -1, c->obstacle,
+		    v3_load(c->q), n, after - b->beta * force / cl->mass[c->node], after) != 0)
+			return -1;
+	}
+	if (b->ct != NULL)
+		for (i = 0; i < b->ct->n; i++)
+			b->ct->pair[i].active = b->pt[i].gap < b->ct->thickness;
+	return 0;
+}
+
+void
+bdf2_commit(struct bdf2 *b, double h, const double *y0, const double *y1,
+    const unsigned char *moved)
+{
+	const struct cloth *cl = b->fo->cl;
+	size_t n3 = 3 * (size_t)cl->n;
+	double *xp = b->hist, *vp = b->hist + n3;
+	int p, k;
+
+	memcpy(b->hist, y0, 2 * n3 * sizeof *b->hist);
+	for (p = 0; p < cl->n; p++) {
+		vec3 x1 = v3_load(y1 + 3 * p), v1 = v3_load(y1 + n3 + 3 * p);
+		vec3 back = v3_madd(x1, v1, -h);	/* where it was at its new velocity */
+
+		if (moved != NULL && moved[p]) {
+			v3_store(xp + 3 * p, back);
+			v3_store(vp + 3 * p, v1);
+			continue;
+		}
+		for (k = 0; k < b->nreset[p]; k++) {
+			vec3 e = v3_load(b->rdir + 9 * p + 3 * k), xo = v3_load(xp + 3 * p);
+			vec3 vo = v3_load(vp + 3 * p);
+
+			v3_store(xp + 3 * p, v3_madd(xo, e, v3_dot(v3_sub(back, xo), e)));
+			v3_store(vp + 3 * p, v3_madd(vo, e, v3_dot(v3_sub(v1, vo), e)));
+		}
+	}
+	b->has_hist = true;
+}
+
+void
+bdf2_set_history(struct bdf2 *b, const double *hist)
+{
+	b->has_hist = hist != NULL;
+	if (hist != NULL)
+		memcpy(b->hist, hist, 6 * (size_t)b->fo->cl->n * sizeof *b->hist);
+}

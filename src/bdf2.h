@@ -1,0 +1,157 @@
+/* bdf2.h: the implicit step (integrator = bdf2): the second-order backward
+ * differentiation formula over the whole cloth at steps of a frame, each
+ * step one minimisation solved by Newton's method.
+ *
+ * BDF2 for x'' = F/m, with beta = 2h/3,
+ *   xhat = (4 x_n - x_n-1)/3,  vhat = (4 v_n - v_n-1)/3,
+ *   v_n+1 = (x_n+1 - xhat)/beta,  M (v_n+1 - vhat) = beta F(x_n+1, v_n+1),
+ * is the stationary point of the incremental potential
+ *   Phi(x) = |x - (xhat + beta vhat)|^2_M / (2 beta^2) + E(x) + D(x) + C(x)
+ * (Gast et al. 2015, "Optimization integrator for large time steps";
+ * Martin et al. 2011 for the variational form): E the elastic energy with
+ * gravity and loads, D the damping's quadratic in v_n+1, C the contacts'
+ * penalties and friction. Newton's method with a line search on Phi
+ * descends to it whatever the stiffness: the yarns' stretch, shear and
+ * bending are taken together, implicitly, with no substep. The first step
+ * is backward Euler (beta = h, xhat = x_n, vhat = v_n): BDF2 needs the
+ * state one step back, which the step keeps (its history), and a keyframe
+ * holds.
+ *
+ * BDF2 is L-stable, so the stiff vibrations die within steps, and of
+ * second order: its numerical damping of the slow motion falls as (h w)^4
+ * where backward Euler's falls as (h w)^2.
+ *
+ * Contacts are terms of Phi, found once a step at its start:
+ *   - analytic obstacles: a node within reach of one gets a penalty
+ *     k (c - phi(x))^2 / 2 while its signed distance phi is under the
+ *     clearance c, with phi and its normal taken at each iterate, so that
+ *     a box's edges and a sphere are followed exactly; k is a multiple of
+ *     the node's m / beta^2, so the rest penetration under a pile is
+ *     microns;
+ *   - the cloth against itself and against meshes: contacts.h's pairs,
+ *     each held a thickness apart on the plane it had at the step's start
+ *     by a penalty of the same kind;
+ *   - Coulomb friction as Li et al.'s lagged, smoothed dissipative
+ *     potential (IPC, 2020): mu lambda f0(|u|) over the tangential
+ *     displacement u of the step, with the normal force lambda of the
+ *     iterate; below a slip of FRICTION_SLIP h it holds like a stiff spring,
+ *     so a cloth resting on a slope stays put instead of creeping.
+ * The step's contacts are then collisions of the method's own and are
+ * recorded as events with their impulse (beta times their force); the
+ * stepper's exact check after the step remains the guarantee.
+ *
+ * A contact that stops a node is a jump of its velocity, which BDF2's
+ * three-point difference would carry into the next step as a rebound
+ * ((3 x_n+1 - 4 x_n + x_n-1) / 2h after a sudden stop is half the speed
+ * it had, outwards). So along each contact's normal a node's history is
+ * made the one of a node that moved at its new velocity all along
+ * (bdf2_commit), and a node the exact check moved loses its history
+ * altogether. */
+#ifndef DRAPE_BDF2_H
+#define DRAPE_BDF2_H
+
+#include <signal.h>
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "blockmat.h"
+#include "forces.h"
+#include "jacobian.h"
+#include "prescribed.h"
+#include "scene.h"
+
+struct contacts;
+struct collide;
+
+/* A node within reach of an analytic obstacle, for one step. */
+struct bdf2_obstacle_contact {
+	int node, obstacle;
+	double k;		/* N/m: the penalty's stiffness */
+	double mu;		/* the obstacle's friction */
+	double tan[6];		/* two unit tangents of its surface at the step's start */
+	double lambda;		/* N: the normal force of the iterate, for friction */
+	double fric;		/* friction's stiffness across: mu lambda f1(s)/s */
+	double phi;		/* m: its signed distance at the iterate */
+	double n[3], q[3];	/* the surface's normal and nearest point there */
+};
+
+/* A contact pair's terms at the iterate (contacts.h's pair of the same
+ * index). */
+struct bdf2_pair_term {
+	double k;		/* N/m: the penalty's stiffness */
+	double gap;		/* m: its separation along n0 at the iterate */
+	double lambda;		/* N: its normal force */
+	double fric;		/* friction's stiffness across */
+	double tan[6];		/* two unit tangents of n0 */
+};
+
+struct bdf2 {
+	const struct scene *sc;
+	const struct forces *fo;
+	const struct prescribed *pr;
+	struct jacobian jc;
+	struct blockmat H;	/* the Newton system, with the pairs' diagonal blocks */
+	double tol;		/* converged when every free node's |dPhi/dx|/m <= tol (m/s^2) */
+	int max_newton, max_cg;
+	double last_step;	/* m: the last Newton step's largest move */
+	/* the state one step back (positions then velocities, 6n), and
+	 * whether there is one */
+	double *hist;
+	bool has_hist;
+	/* the step's */
+	double t1, beta;
+	const double *x0;	/* positions at the step's start (the caller's y) */
+	double *xhat, *vhat, *target;	/* 3n each */
+	double *x, *g, *dx, *xtry, *f;	/* Newton */
+	double *r, *z, *p, *q, *pre;	/* conjugate gradients */
+	double *udamp;		/* per spring: its unit vector at the step's start */
+	struct bdf2_obstacle_contact *oc;
+	size_t noc, occap;
+	struct bdf2_pair_term *pt;
+	size_t ptcap;
+	struct contacts *ct;	/* the step's pairs, and their geometry */
+	const struct collide *col;
+	/* the normals along which each node's history is made anew at the
+	 * commit (up to 3 a node) */
+	double *rdir;
+	unsigned char *nreset;
+	/* so far */
+	long steps, newton, cg, unconverged, cuts;
+	int last_newton, last_cg;
+	double last_residual;	/* m/s^2, the largest |dPhi/dx|/m at the end */
+	const volatile sig_atomic_t *stop;
+	bool stopped;
+};
+
+/* For a checked scene and its network; tol over gravity's magnitude (1
+ * m/s^2 without gravity), 0 for the default.
+ * Returns 0, or -1 out of memory. */
+int bdf2_init(struct bdf2 *b, const struct scene *sc, const struct forces *fo,
+    const struct prescribed *pr, double tol);
+void bdf2_free(struct bdf2 *b);
+void bdf2_set_stop(struct bdf2 *b, const volatile sig_atomic_t *flag);
+
+/* y (positions, velocities at t) to y_out at t + h; ct: the step's
+ * contact pairs (contacts_find) in col's geometry, or NULL. Held nodes
+ * end on their prescribed positions (their velocities are the caller's).
+ * Once the stop flag is set it returns early (b->stopped), y_out
+ * unfinished. */
+void bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
+    struct contacts *ct, const struct collide *col);
+
+/* The step's contacts with analytic obstacles as events of col (the
+ * pairs' are contacts_events'), at the step's end state y1; and marks the
+ * pairs that pushed active. 0, or -1 out of memory. */
+int bdf2_events(struct bdf2 *b, struct collide *col, long step, const double *y1);
+
+/* After the step is committed: the history of the next one is y0, the
+ * state the step started from, made anew along the contacts' normals and
+ * wholly for the nodes in moved (the exact check's corrections; may be
+ * NULL). */
+void bdf2_commit(struct bdf2 *b, double h, const double *y0, const double *y1,
+    const unsigned char *moved);
+
+/* The history for a restored state: hist (6n) or NULL for none. */
+void bdf2_set_history(struct bdf2 *b, const double *hist);
+
+#endif

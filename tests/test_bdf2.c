@@ -1,0 +1,161 @@
+/* test_bdf2.c: the implicit step (integrator = bdf2, bdf2.c) against
+ * answers known in closed form and against itself: free fall, exact
+ * after its first step; a run resumed from a saved state (with the state
+ * one step back that BDF2 needs) steps as the run does, to the bit, and
+ * one resumed without it does not; a cloth that lands on a plane comes to
+ * rest on it, outside it, with its contacts recorded as events. */
+#include <math.h>
+
+#include "testutil.h"
+
+/* A 5 x 5 cloth of 10 mm squares lying flat (extra: more sections). */
+#define FLAT(extra) \
+	"[simulation]\nduration = 0.3 s\ndt = 10 ms\nintegrator = bdf2\n" \
+	"[cloth]\nnodes = 5 5\nspacing = 10 mm\norientation = +x +z\norigin = 0 0.02 0 m\n" \
+	"weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n" \
+	"modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n" \
+	"bending_weft = 2 uN*m\n" extra
+
+/* BDF2 integrates a constant acceleration exactly from an exact history;
+ * its first step, backward Euler, puts the cloth g h^2 / 2 low, an error
+ * that BDF2's recurrence carries to 3/2 of it: x = x0 + v0 t + g t^2 / 2 +
+ * 3 g h^2 / 4 from the second step on, v = v0 + g t. */
+static void
+free_fall_bdf2(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	double worst = 0, worst_v = 0, t, h;
+	int p;
+
+	(void)state;
+	load_shipped_with(&sc, SCENE_DIR "free-fall.scene", "nodes = 25 25", "nodes = 6 6");
+	sc.integrator = INTEG_BDF2;
+	st = new_stepper(&sc);
+	run_to_end(st);
+	t = report_of(st).t;
+	h = report_of(st).dt_set;
+	for (p = 0; p < cloth_of(st)->n; p++) {
+		vec3 x0 = v3_load(cloth_of(st)->x0 + 3 * p), v0 = v3_load(sc.velocity);
+		vec3 g = v3_load(sc.gravity);
+		vec3 exact = v3_madd(v3_madd(x0, v0, t), g, t * t / 2 + 0.75 * h * h);
+
+		worst = fmax(worst, v3_len(v3_sub(v3_load(stepper_x(st) + 3 * p), exact)));
+		worst_v = fmax(worst_v, v3_len(v3_sub(v3_load(stepper_v(st) + 3 * p),
+		    v3_madd(v0, g, t))));
+	}
+	print_message("bdf2 free fall over %g s: %.3g m from x0 + v0 t + g t^2/2 + 3 g h^2/4, "
+	    "%.3g m/s from v0 + g t\n", t, worst, worst_v);
+	/* to the Newton iterations' tolerance (1e-4 m/s, bdf2.c), which a
+	 * linear system meets by a hundred times at its last iteration */
+	assert_true(worst < 1e-6);
+	assert_true(worst_v < 1e-5);
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+/* Two steppers of one scene; b restored into a's state at step k (with
+ * its history, or without), then both stepped on: the same hashes, or
+ * not. */
+static void
+resume_needs_history(void **state)
+{
+	struct scene sc;
+	struct stepper *a, *b;
+	struct stepper_state s;
+	struct drape_err err;
+	int k;
+
+	(void)state;
+	parse_text(&sc, FLAT("[plane]\npoint = 0 0 0 m\n[collision]\nself = on\n"));
+	a = new_stepper(&sc);
+	b = new_stepper(&sc);
+	for (k = 0; k < 7; k++)
+		step_once(a);
+	stepper_save(a, &s);
+	assert_non_null(s.hist);	/* BDF2 keeps the state one step back */
+	if (stepper_restore(b, &s, &err) != 0)
+		fail_msg("stepper_restore: %s", err.msg);
+	assert_true(stepper_hash(a) == stepper_hash(b));
+	for (k = 0; k < 12; k++) {
+		step_once(a);
+		step_once(b);
+		assert_true(stepper_hash(a) == stepper_hash(b));
+	}
+	/* without the history the state is another one: its hash differs,
+	 * and restored so, BDF2 restarts with backward Euler */
+	stepper_save(a, &s);
+	{
+		uint64_t with = s.hash;
+
+		s.hist = NULL;
+		s.hash = stepper_state_hash(s.y, NULL, (size_t)cloth_of(a)->n, s.t);
+		assert_true(s.hash != with);
+		if (stepper_restore(b, &s, &err) != 0)
+			fail_msg("stepper_restore: %s", err.msg);
+		step_once(a);
+		step_once(b);
+		assert_true(stepper_hash(a) != stepper_hash(b));
+	}
+	stepper_free(a);
+	stepper_free(b);
+	scene_free(&sc);
+}
+
+/* A cloth dropped 2 cm onto a plane: it lands and lies still on it, no
+ * node under it, the contacts of each step with the plane recorded as
+ * events of the obstacle with their impulse (the normal velocity they
+ * took away). */
+static void
+lands_and_rests(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct energy e;
+	long obstacle_events = 0, impacts = 0;
+	double lowest = INFINITY;
+	int p;
+
+	(void)state;
+	parse_text(&sc, FLAT("[plane]\npoint = 0 0 0 m\n"));
+	st = new_stepper(&sc);
+	while (!stepper_done(st)) {
+		struct stepper_report r;
+		size_t i;
+
+		step_once(st);
+		r = report_of(st);
+		for (i = 0; i < r.nev; i++) {
+			if (r.ev[i].type != CONTACT_OBSTACLE)
+				continue;
+			obstacle_events++;
+			assert_int_equal(r.ev[i].obstacle, 0);
+			assert_true(r.ev[i].vn_after >= r.ev[i].vn_before);
+			impacts += r.ev[i].vn_before < -0.1;
+		}
+	}
+	for (p = 0; p < cloth_of(st)->n; p++)
+		lowest = fmin(lowest, stepper_x(st)[3 * p + 1]);
+	stepper_energy(st, &e);
+	print_message("bdf2 landing: %ld obstacle events (%ld at over 0.1 m/s), lowest node %.3g m, "
+	    "kinetic energy %.3g J at the end\n", obstacle_events, impacts, lowest, e.kinetic);
+	assert_true(obstacle_events >= 25 * 20);	/* every node, every step on the plane */
+	assert_true(impacts >= 25);		/* each node's landing */
+	assert_true(lowest > 0);
+	assert_true(lowest < sc.mat.thickness);
+	assert_true(e.kinetic < 1e-15);	/* 0.2 um/s a node */
+	stepper_free(st);
+	scene_free(&sc);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(free_fall_bdf2),
+		cmocka_unit_test(resume_needs_history),
+		cmocka_unit_test(lands_and_rests),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,20 +1,26 @@
 /* mg.c: the geometric multigrid V-cycle on the cloth's grid (see mg.h).
- * References: Trottenberg, Oosterlee & Schueller, "Multigrid" (2001):
- * line relaxation for anisotropic operators (5.1), Galerkin coarsening
- * (A.2 and 7.7), the symmetric V-cycle as a CG preconditioner (7.8). */
+ * References: U. Trottenberg, C. Oosterlee, A. Schueller, "Multigrid",
+ * Academic Press 2001: line relaxation for anisotropic operators (5.1),
+ * operator-dependent interpolation and Galerkin coarsening (5.4, A.2),
+ * systems (ch. 8), the symmetric V-cycle as a CG preconditioner (7.8);
+ * J. E. Dendy, "Black box multigrid", J. Comput. Phys. 48 (1982) 366,
+ * for the interpolation's collapsed stencils; A. George, J. Liu,
+ * "Computer Solution of Large Sparse Positive Definite Systems",
+ * Prentice-Hall 1981, ch. 4, for the envelope Cholesky. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "mg.h"
 
-/* A level this small, or one neither of whose directions coarsens, is
- * solved by a dense Cholesky: 96 unknowns at most cost ~10^4 flops a
- * solve, less than a sweep of the level above. */
+/* A level of at most this many nodes is the coarsest: its Cholesky
+ * (at most 96 unknowns) costs less than a sweep of the level above. */
 #define MG_COARSEST 32
-/* A direction with fewer grid lines than this is not coarsened (the
- * strip's 3 across): coarsening it would halve little and make the
- * coarse operator's stencil wider for nothing. */
+/* A level with fewer grid lines than this in either direction is the
+ * coarsest too: narrow, its envelope Cholesky along the long direction
+ * costs O(n) (the 125 x 3 strip: 1125 unknowns, 26 wide) and solves it
+ * exactly, where coarsening along a strip cannot represent its in-plane
+ * bending (measured: 16 iterations crumpled, semi-coarsened). */
 #define MG_MIN_LINES 5
 
 /* ---- 3 x 3 blocks, row-major ---- */
@@ -69,26 +75,71 @@ blk_mul(const double *b, const double *x, double *y)
 }
 
 /* C -= A B^T */
-static void
+static inline void
 blk_sub_abt(const double *a, const double *b, double *c)
 {
-	int i, j;
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
+	double b6 = b[6], b7 = b[7], b8 = b[8];
+	int i;
 
-	for (i = 0; i < 3; i++)
-		for (j = 0; j < 3; j++)
-			c[3 * i + j] -= a[3 * i] * b[3 * j] + a[3 * i + 1] * b[3 * j + 1] +
-			    a[3 * i + 2] * b[3 * j + 2];
+	for (i = 0; i < 9; i += 3) {
+		double a0 = a[i], a1 = a[i + 1], a2 = a[i + 2];
+
+		c[i] -= a0 * b0 + a1 * b1 + a2 * b2;
+		c[i + 1] -= a0 * b3 + a1 * b4 + a2 * b5;
+		c[i + 2] -= a0 * b6 + a1 * b7 + a2 * b8;
+	}
 }
 
 /* C = A B */
-static void
+static inline void
 blk_ab(const double *a, const double *b, double *c)
 {
-	int i, j;
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
+	double b6 = b[6], b7 = b[7], b8 = b[8];
+	int i;
 
-	for (i = 0; i < 3; i++)
-		for (j = 0; j < 3; j++)
-			c[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+	for (i = 0; i < 9; i += 3) {
+		double a0 = a[i], a1 = a[i + 1], a2 = a[i + 2];
+
+		c[i] = a0 * b0 + a1 * b3 + a2 * b6;
+		c[i + 1] = a0 * b1 + a1 * b4 + a2 * b7;
+		c[i + 2] = a0 * b2 + a1 * b5 + a2 * b8;
+	}
+}
+
+/* C += A B, written out: the Galerkin product's inner loop */
+static inline void
+blk_add_ab(const double *a, const double *b, double *c)
+{
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
+	double b6 = b[6], b7 = b[7], b8 = b[8];
+	int i;
+
+	for (i = 0; i < 9; i += 3) {
+		double a0 = a[i], a1 = a[i + 1], a2 = a[i + 2];
+
+		c[i] += a0 * b0 + a1 * b3 + a2 * b6;
+		c[i + 1] += a0 * b1 + a1 * b4 + a2 * b7;
+		c[i + 2] += a0 * b2 + a1 * b5 + a2 * b8;
+	}
+}
+
+/* C += A^T B, written out as blk_add_ab */
+static inline void
+blk_add_atb(const double *a, const double *b, double *c)
+{
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
+	double b6 = b[6], b7 = b[7], b8 = b[8];
+	int i;
+
+	for (i = 0; i < 3; i++) {
+		double a0 = a[i], a1 = a[3 + i], a2 = a[6 + i];
+
+		c[3 * i] += a0 * b0 + a1 * b3 + a2 * b6;
+		c[3 * i + 1] += a0 * b1 + a1 * b4 + a2 * b7;
+		c[3 * i + 2] += a0 * b2 + a1 * b5 + a2 * b8;
+	}
 }
 
 /* inv = D^-1 for D made symmetric ((D + D^T)/2, removing rounding's
@@ -110,6 +161,32 @@ blk_spd_inverse(const double *d, double *inv)
 	inv[4] = (a * i - c * c) / det;
 	inv[5] = inv[7] = (b * c - a * f) / det;
 	inv[8] = (a * e - b * b) / det;
+	return 0;
+}
+
+/* inv = D^-1 for a general D whose symmetric part is positive definite;
+ * 0, or -1 when it is not (or D is near singular). */
+static int
+blk_inverse(const double *d, double *inv)
+{
+	double sym[9], tmp[9], c00 = d[4] * d[8] - d[5] * d[7], c01 = d[5] * d[6] - d[3] * d[8];
+	double c02 = d[3] * d[7] - d[4] * d[6], det = d[0] * c00 + d[1] * c01 + d[2] * c02;
+	int i, j;
+
+	for (i = 0; i < 3; i++)
+		for (j = 0; j < 3; j++)
+			sym[3 * i + j] = (d[3 * i + j] + d[3 * j + i]) / 2;
+	if (blk_spd_inverse(sym, tmp) != 0 || !(fabs(det) > 0) || !isfinite(det))
+		return -1;
+	inv[0] = c00 / det;
+	inv[3] = c01 / det;
+	inv[6] = c02 / det;
+	inv[1] = (d[2] * d[7] - d[1] * d[8]) / det;
+	inv[4] = (d[0] * d[8] - d[2] * d[6]) / det;
+	inv[7] = (d[1] * d[6] - d[0] * d[7]) / det;
+	inv[2] = (d[1] * d[5] - d[2] * d[4]) / det;
+	inv[5] = (d[2] * d[3] - d[0] * d[5]) / det;
+	inv[8] = (d[0] * d[4] - d[1] * d[3]) / det;
 	return 0;
 }
 
@@ -155,6 +232,12 @@ level_free(struct mg_level *lv)
 	free(lv->pstart);
 	free(lv->par);
 	free(lv->pw);
+	free(lv->pb);
+	free(lv->lou);
+	free(lv->hiu);
+	free(lv->lov);
+	free(lv->hiv);
+	free(lv->where);
 	free(lv->tstart);
 	free(lv->rec1);
 	free(lv->rstart);
@@ -176,7 +259,11 @@ mg_free(struct mg *m)
 	for (l = 0; l < m->nlevels; l++)
 		level_free(&m->lv[l]);
 	free(m->lv);
-	free(m->chol);
+	free(m->band.pos);
+	free(m->band.first);
+	free(m->band.off);
+	free(m->band.val);
+	free(m->band.y);
 	free(m->line_buf);
 	free(m->row_buf);
 	memset(m, 0, sizeof *m);
@@ -185,18 +272,17 @@ mg_free(struct mg *m)
 /* ---- the hierarchy ---- */
 
 /* One direction's coarsening: of nf grid lines at places x, every other
- * one and the last are kept (all of them when `coarsen` is 0). For each
- * fine line f: its coarse neighbours lo[f] <= hi[f] (equal on a kept
- * line) and lo's linear weight wlo[f] by place; xc gets the kept lines'
- * places. Returns the coarse count. */
+ * one and the last are kept. For each fine line f: its coarse neighbours
+ * lo[f] <= hi[f] (equal on a kept line) and lo's linear weight wlo[f] by
+ * place; xc gets the kept lines' places. Returns the coarse count. */
 static int
-coarsen_dir(int nf, const double *x, int coarsen, int *lo, int *hi, double *wlo, double *xc)
+coarsen_dir(int nf, const double *x, int *lo, int *hi, double *wlo, double *xc)
 {
 	int f, nc = 0;
 
 	for (f = 0; f < nf; f++) {
 		lo[f] = -1;
-		if (!coarsen || f % 2 == 0 || f == nf - 1) {
+		if (f % 2 == 0 || f == nf - 1) {
 			xc[nc] = x[f];
 			lo[f] = hi[f] = nc++;
 			wlo[f] = 1;
@@ -270,22 +356,24 @@ fine_parents(const struct mg_level *f, const struct mg_level *c, int i, int j, c
 	return k;
 }
 
-/* Level c from level f (the grid coarsened in the directions asked), and
- * f's interpolation from c. 0, or -1 out of memory. */
+/* Level c from level f (every other grid line), and f's interpolation
+ * from c. 0, or -1 out of memory. */
 static int
-coarsen_level(struct mg_level *f, struct mg_level *c, int cu_dir, int cv_dir)
+coarsen_level(struct mg_level *f, struct mg_level *c)
 {
 	int ok = 1, i, j, p, k;
-	int *lou = zalloc((size_t)f->nu, sizeof *lou, &ok), *hiu = zalloc((size_t)f->nu, sizeof *hiu, &ok);
-	int *lov = zalloc((size_t)f->nv, sizeof *lov, &ok), *hiv = zalloc((size_t)f->nv, sizeof *hiv, &ok);
+	int *lou = f->lou = zalloc((size_t)f->nu, sizeof *lou, &ok);
+	int *hiu = f->hiu = zalloc((size_t)f->nu, sizeof *hiu, &ok);
+	int *lov = f->lov = zalloc((size_t)f->nv, sizeof *lov, &ok);
+	int *hiv = f->hiv = zalloc((size_t)f->nv, sizeof *hiv, &ok);
 	double *wu = zalloc((size_t)f->nu, sizeof *wu, &ok), *wv = zalloc((size_t)f->nv, sizeof *wv, &ok);
 
 	c->xu = zalloc((size_t)f->nu, sizeof *c->xu, &ok);
 	c->xv = zalloc((size_t)f->nv, sizeof *c->xv, &ok);
 	if (!ok)
 		goto out;
-	c->nu = coarsen_dir(f->nu, f->xu, cu_dir, lou, hiu, wu, c->xu);
-	c->nv = coarsen_dir(f->nv, f->xv, cv_dir, lov, hiv, wv, c->xv);
+	c->nu = coarsen_dir(f->nu, f->xu, lou, hiu, wu, c->xu);
+	c->nv = coarsen_dir(f->nv, f->xv, lov, hiv, wv, c->xv);
 	if ((c->grid_node = zalloc((size_t)c->nu * (size_t)c->nv, sizeof *c->grid_node, &ok)) == NULL)
 		goto out;
 	/* a coarse node where the fine grid has one (the shape's coarse
@@ -297,11 +385,17 @@ coarsen_level(struct mg_level *f, struct mg_level *c, int cu_dir, int cv_dir)
 		for (i = 0; i < f->nu; i++)
 			if (lou[i] == hiu[i] && lov[j] == hiv[j] && f->grid_node[j * f->nu + i] >= 0)
 				c->grid_node[lov[j] * c->nu + lou[i]] = c->n++;
+	if ((c->where = zalloc((size_t)c->n, sizeof *c->where, &ok)) == NULL)
+		goto out;
+	for (p = 0; p < c->nu * c->nv; p++)
+		if (c->grid_node[p] >= 0)
+			c->where[c->grid_node[p]] = p;
 
 	/* interpolation, by fine node */
 	f->pstart = zalloc((size_t)f->n + 1, sizeof *f->pstart, &ok);
 	f->par = zalloc(4 * (size_t)f->n, sizeof *f->par, &ok);
 	f->pw = zalloc(4 * (size_t)f->n, sizeof *f->pw, &ok);
+	f->pb = zalloc(36 * (size_t)f->n, sizeof *f->pb, &ok);
 	if (!ok)
 		goto out;
 	for (j = 0, k = 0; j < f->nv; j++)
@@ -314,10 +408,6 @@ coarsen_level(struct mg_level *f, struct mg_level *c, int cu_dir, int cv_dir)
 	f->pstart[f->n] = k;
 
 out:
-	free(lou);
-	free(hiu);
-	free(lov);
-	free(hiv);
 	free(wu);
 	free(wv);
 	return ok ? 0 : -1;
@@ -451,27 +541,17 @@ collect_lines(const struct mg_level *lv, int dir, struct mg_lines *ln, int *pos,
 	ln->start[0] = 0;
 }
 
-/* The off-line blocks of position t's row (node p, line l): the earlier
- * lines' first, then the later lines'. Warp lines use the level matrix's
- * rows as they are (a line's nodes are consecutive, so its blocks are one
- * run in the sorted row, and the positions are the nodes); weft lines
- * (copy) a copy, listed here (n: how many so far). */
+/* Lists the off-line blocks of position t's row (node p, line l): the
+ * earlier lines' first, then the later lines'; n counts them, and they
+ * are noted (src, own_col) once the arrays exist. The sweeps read their
+ * copies in this order, one stream (the matrix's rows, read in place,
+ * would be read in runs with gaps, and the weft lines' rows strided). */
 static void
-list_off_line(struct mg_lines *ln, const struct blockmat *A, int copy, int t, int l,
-    const int *lineid, size_t *n)
+list_off_line(struct mg_lines *ln, const struct blockmat *A, int t, int l, const int *lineid,
+    size_t *n)
 {
 	int p = ln->order[t], k, later;
 
-	if (!copy) {
-		ln->lo[t] = A->start[p];
-		for (k = A->start[p]; k < A->start[p + 1] && lineid[A->col[k]] < l; k++)
-			;
-		ln->mid[t] = k;
-		for (; k < A->start[p + 1] && lineid[A->col[k]] == l; k++)
-			;
-		ln->hi[t] = k;
-		return;
-	}
 	ln->lo[t] = (int)*n;
 	for (later = 0; later < 2; later++) {
 		if (later)
@@ -497,7 +577,7 @@ build_lines(struct mg_level *lv, int dir, int *longest)
 {
 	struct mg_lines *ln = &lv->lines[dir];
 	const struct blockmat *A = &lv->A;
-	int ok = 1, n = lv->n, t, k, l, nb, pass, copy = dir != 0;
+	int ok = 1, n = lv->n, t, k, l, nb, pass;
 	int *pos = zalloc((size_t)n, sizeof *pos, &ok), *lineid = zalloc((size_t)n, sizeof *lineid, &ok);
 	size_t noff = 0;
 
@@ -509,8 +589,6 @@ build_lines(struct mg_level *lv, int dir, int *longest)
 	if (!ok)
 		goto out;
 	collect_lines(lv, dir, ln, pos, lineid);
-	for (t = 0; t < n; t++)
-		copy |= ln->order[t] != t;	/* not so on our numbering: kept general */
 	ln->band = 0;
 	for (l = 0; l < ln->nlines; l++)
 		if (ln->start[l + 1] - ln->start[l] > *longest)
@@ -527,9 +605,8 @@ build_lines(struct mg_level *lv, int dir, int *longest)
 	ln->fac = zalloc(9 * (size_t)n * (size_t)(nb + 1), sizeof *ln->fac, &ok);
 	if (!ok)
 		goto out;
-	/* two passes for the weft lines: count their off-line blocks, then
-	 * list them */
-	for (pass = 0; pass < (copy ? 2 : 1); pass++) {
+	/* two passes: count the off-line blocks, then list them */
+	for (pass = 0; pass < 2; pass++) {
 		if (pass == 1) {
 			ln->src = zalloc(noff, sizeof *ln->src, &ok);
 			ln->own_col = zalloc(noff, sizeof *ln->own_col, &ok);
@@ -539,10 +616,9 @@ build_lines(struct mg_level *lv, int dir, int *longest)
 		}
 		for (l = 0, noff = 0; l < ln->nlines; l++)
 			for (t = ln->start[l]; t < ln->start[l + 1]; t++)
-				list_off_line(ln, A, copy, t, l, lineid, &noff);
+				list_off_line(ln, A, t, l, lineid, &noff);
 	}
-	ln->lo[n] = copy ? (int)noff : A->start[n];
-	ln->col = copy ? ln->own_col : A->col;
+	ln->lo[n] = (int)noff;
 	for (l = 0; l < ln->nlines; l++)
 		for (t = ln->start[l]; t < ln->start[l + 1]; t++)
 			for (k = 0; k <= nb; k++)
@@ -569,6 +645,9 @@ finest_level(struct mg_level *lv, const struct cloth *cl)
 	if (!ok)
 		return -1;
 	memcpy(lv->grid_node, cl->grid_node, (size_t)cl->nu * (size_t)cl->nv * sizeof *lv->grid_node);
+	if ((lv->where = zalloc((size_t)cl->n, sizeof *lv->where, &ok)) == NULL)
+		return -1;
+	memcpy(lv->where, cl->node_grid, (size_t)cl->n * sizeof *lv->where);
 	for (i = 0; i < cl->nu; i++)
 		lv->xu[i] = i;
 	for (i = 0; i < cl->nv; i++)
@@ -581,13 +660,10 @@ finest_level(struct mg_level *lv, const struct cloth *cl)
 	return 0;
 }
 
-/* Whether level lv is the coarsest, and if not which directions coarsen. */
 static int
-is_coarsest(const struct mg_level *lv, int *cu, int *cv)
+is_coarsest(const struct mg_level *lv)
 {
-	*cu = lv->nu >= MG_MIN_LINES;
-	*cv = lv->nv >= MG_MIN_LINES;
-	return lv->n <= MG_COARSEST || (!*cu && !*cv);
+	return lv->n <= MG_COARSEST || lv->nu < MG_MIN_LINES || lv->nv < MG_MIN_LINES;
 }
 
 /* The levels' grids and interpolations, coarsening until the coarsest.
@@ -595,14 +671,14 @@ is_coarsest(const struct mg_level *lv, int *cu, int *cv)
 static int
 build_levels(struct mg *m, const struct cloth *cl)
 {
-	int l, cu, cv, cap = 4;
+	int l, cap = 4;
 
 	if ((m->lv = calloc((size_t)cap, sizeof *m->lv)) == NULL)
 		return -1;
 	m->nlevels = 1;
 	if (finest_level(&m->lv[0], cl) != 0)
 		return -1;
-	for (l = 0; !is_coarsest(&m->lv[l], &cu, &cv); l++) {
+	for (l = 0; !is_coarsest(&m->lv[l]); l++) {
 		if (m->nlevels == cap) {
 			struct mg_level *more = realloc(m->lv, 2 * (size_t)cap * sizeof *more);
 
@@ -613,10 +689,47 @@ build_levels(struct mg *m, const struct cloth *cl)
 			cap *= 2;
 		}
 		m->nlevels++;
-		if (coarsen_level(&m->lv[l], &m->lv[l + 1], cu, cv) != 0)
+		if (coarsen_level(&m->lv[l], &m->lv[l + 1]) != 0)
 			return -1;
 	}
 	return 0;
+}
+
+/* The coarsest level's envelope: its nodes ordered along the longer grid
+ * direction (cross-section after cross-section), each row's first
+ * column. 0, or -1 out of memory. */
+static int
+band_init(struct mg_band *b, const struct mg_level *lv)
+{
+	int ok = 1, i, j, t = 0, p, k, r, along_i = lv->nu >= lv->nv;
+	size_t total = 0;
+
+	b->N = 3 * lv->n;
+	b->pos = zalloc((size_t)lv->n, sizeof *b->pos, &ok);
+	b->first = zalloc((size_t)b->N, sizeof *b->first, &ok);
+	b->off = zalloc((size_t)b->N + 1, sizeof *b->off, &ok);
+	b->y = zalloc((size_t)b->N, sizeof *b->y, &ok);
+	if (!ok)
+		return -1;
+	for (i = 0; i < (along_i ? lv->nu : lv->nv); i++)
+		for (j = 0; j < (along_i ? lv->nv : lv->nu); j++)
+			if ((p = along_i ? lv->grid_node[j * lv->nu + i] : lv->grid_node[i * lv->nu + j]) >= 0)
+				b->pos[p] = t++;
+	for (p = 0; p < lv->n; p++) {
+		int lo = b->pos[p];
+
+		for (k = lv->A.start[p]; k < lv->A.start[p + 1]; k++)
+			lo = b->pos[lv->A.col[k]] < lo ? b->pos[lv->A.col[k]] : lo;
+		for (r = 0; r < 3; r++)
+			b->first[3 * b->pos[p] + r] = 3 * lo;
+	}
+	for (r = 0; r < b->N; r++) {
+		b->off[r] = total;
+		total += (size_t)(r - b->first[r] + 1);
+	}
+	b->off[b->N] = total;
+	b->val = zalloc(total, sizeof *b->val, &ok);
+	return ok ? 0 : -1;
 }
 
 /* The coarse levels' patterns and Galerkin recipes, every level's lines,
@@ -652,8 +765,8 @@ build_operators(struct mg *m)
 	}
 	if (!ok)
 		return -1;
-	m->ncoarse = m->lv[m->nlevels - 1].n;
-	m->chol = zalloc(9 * (size_t)m->ncoarse * (size_t)m->ncoarse, sizeof *m->chol, &ok);
+	if (band_init(&m->band, &m->lv[m->nlevels - 1]) != 0)
+		return -1;
 	m->line_buf = zalloc(3 * (size_t)longest, sizeof *m->line_buf, &ok);
 	m->row_buf = zalloc(9 * (size_t)slots, sizeof *m->row_buf, &ok);
 	return ok ? 0 : -1;
@@ -672,6 +785,153 @@ mg_init(struct mg *m, const struct cloth *cl)
 
 /* ---- setup: the numbers ---- */
 
+/* The entry of node a's interpolation from coarse node q, or -1. */
+static int
+entry_of(const struct mg_level *f, int a, int q)
+{
+	int e;
+
+	for (e = f->pstart[a]; e < f->pstart[a + 1]; e++)
+		if (f->par[e] == q)
+			return e;
+	return -1;
+}
+
+/* Node a's weights: the bilinear ones times I. */
+static void
+bilinear_block(struct mg_level *f, int a)
+{
+	int e, i;
+
+	for (e = f->pstart[a]; e < f->pstart[a + 1]; e++) {
+		double *w = f->pb + 9 * (size_t)e;
+
+		memset(w, 0, 9 * sizeof *w);
+		for (i = 0; i < 3; i++)
+			w[4 * i] = f->pw[e];
+	}
+}
+
+/* Whether weights w (9 * n) are sane: none above 8. Bilinear ones are
+ * at most 1; the operator's reach a few times that where a node's
+ * springs are rotated or compressed (on the crumpled test cloths 98 % of
+ * the nodes' stay below 2 and 0.05 % pass 8), and would reach any value
+ * from a collapsed pivot near singular. */
+static int
+weights_sane(const double *w, int n)
+{
+	int i;
+
+	for (i = 0; i < 9 * n; i++)
+		if (!(fabs(w[i]) <= 8))
+			return 0;
+	return 1;
+}
+
+/* Node a between two coarse nodes along one direction (dir 0: i): its
+ * row collapsed onto that direction (Dendy's black box multigrid: the
+ * other direction's couplings move with it), the blocks 2 away lumped
+ * onto the coarse neighbours 1 away; P_aL = -D^-1 N_L, P_aR = -D^-1 N_R.
+ * 0, or -1 when that fails. */
+static int
+edge_weights(struct mg_level *f, int a, int dir)
+{
+	double S[5][9], D[9], Di[9], N[2][9];
+	int at = f->where[a], i0 = at % f->nu, j0 = at / f->nu, k, s, m;
+	int lo = dir == 0 ? f->lou[i0] : f->lov[j0], hi = dir == 0 ? f->hiu[i0] : f->hiv[j0];
+	int cl, ch;
+	const struct mg_level *c = f + 1;	/* the levels are an array */
+
+	memset(S, 0, sizeof S);
+	for (k = f->A.start[a]; k < f->A.start[a + 1]; k++) {
+		int bt = f->where[f->A.col[k]], d = dir == 0 ? bt % f->nu - i0 : bt / f->nu - j0;
+
+		d = d < -2 ? -2 : d > 2 ? 2 : d;
+		for (m = 0; m < 9; m++)
+			S[d + 2][m] += f->val[9 * (size_t)k + m];
+	}
+	for (m = 0; m < 9; m++) {
+		D[m] = S[2][m];
+		N[0][m] = S[0][m] + S[1][m];
+		N[1][m] = S[3][m] + S[4][m];
+	}
+	if (blk_inverse(D, Di) != 0)
+		return -1;
+	cl = dir == 0 ? c->grid_node[f->lov[j0] * c->nu + lo] : c->grid_node[lo * c->nu + f->lou[i0]];
+	ch = dir == 0 ? c->grid_node[f->lov[j0] * c->nu + hi] : c->grid_node[hi * c->nu + f->lou[i0]];
+	for (s = 0; s < 2; s++) {
+		int e = entry_of(f, a, s == 0 ? cl : ch);
+		double *w = e >= 0 ? f->pb + 9 * (size_t)e : NULL;
+
+		if (w == NULL)
+			continue;
+		blk_ab(Di, N[s], w);
+		for (m = 0; m < 9; m++)
+			w[m] = -w[m];
+	}
+	return weights_sane(f->pb + 9 * (size_t)f->pstart[a], f->pstart[a + 1] - f->pstart[a]) ? 0 : -1;
+}
+
+/* Node a inside a coarse cell: -D^-1 times its couplings to the 8 around
+ * it (those farther lumped onto them), each of those interpolated. 0, or
+ * -1 when that fails. */
+static int
+centre_weights(struct mg_level *f, int a)
+{
+	double acc[4][9], Di[9], tmp[9];
+	int at = f->where[a], i0 = at % f->nu, j0 = at / f->nu, k, e, et, m;
+
+	memset(acc, 0, sizeof acc);
+	if (blk_inverse(f->val + 9 * (size_t)f->A.diag[a], Di) != 0)
+		return -1;
+	for (k = f->A.start[a]; k < f->A.start[a + 1]; k++) {
+		int bt = f->where[f->A.col[k]], di = bt % f->nu - i0, dj = bt / f->nu - j0, t;
+
+		if (k == f->A.diag[a])
+			continue;
+		di = di < -1 ? -1 : di > 1 ? 1 : di;
+		dj = dj < -1 ? -1 : dj > 1 ? 1 : dj;
+		if ((t = f->grid_node[(j0 + dj) * f->nu + i0 + di]) < 0)
+			continue;
+		for (et = f->pstart[t]; et < f->pstart[t + 1]; et++)
+			if ((e = entry_of(f, a, f->par[et])) >= 0)
+				blk_add_ab(f->val + 9 * (size_t)k, f->pb + 9 * (size_t)et, acc[e - f->pstart[a]]);
+	}
+	for (e = 0; e < f->pstart[a + 1] - f->pstart[a]; e++) {
+		blk_ab(Di, acc[e], tmp);
+		for (m = 0; m < 9; m++)
+			f->pb[9 * (size_t)(f->pstart[a] + e) + m] = -tmp[m];
+	}
+	return weights_sane(f->pb + 9 * (size_t)f->pstart[a], f->pstart[a + 1] - f->pstart[a]) ? 0 : -1;
+}
+
+/* f's interpolation weights from its matrix: operator-dependent (Dendy's
+ * black box multigrid, with 3 x 3 blocks, so that an interpolated node
+ * follows its springs' directions, rotated or compressed), the bilinear
+ * ones where that fails (a pivot not positive definite). The edges
+ * first: a centre's weights use theirs. */
+static void
+block_weights(struct mg_level *f)
+{
+	int a, pass;
+
+	for (pass = 0; pass < 2; pass++)
+		for (a = 0; a < f->n; a++) {
+			int at = f->where[a], i0 = at % f->nu, j0 = at / f->nu, r;
+			int on_u = f->lou[i0] == f->hiu[i0], on_v = f->lov[j0] == f->hiv[j0];
+			int centre = !on_u && !on_v;
+
+			if (centre != pass)
+				continue;
+			bilinear_block(f, a);
+			if (on_u && on_v)	/* a coarse node: I */
+				continue;
+			r = centre ? centre_weights(f, a) : edge_weights(f, a, on_u ? 1 : 0);
+			if (r != 0)
+				bilinear_block(f, a);
+		}
+}
+
 /* c's values: P^T A P, A being f's, by f's recipe: row a of A P into
  * buf (blocks), then its share of each coarse row it interpolates to;
  * the lower triangle mirrors the upper (A is symmetric). */
@@ -687,21 +947,13 @@ galerkin_values(const struct mg_level *f, struct mg_level *c, double *buf)
 			const double *src = f->val + 9 * (size_t)k;
 			int b = f->A.col[k];
 
-			for (e = f->pstart[b]; e < f->pstart[b + 1]; e++) {
-				double *d = buf + 9 * (size_t)f->rec1[q++], w = f->pw[e];
-
-				for (i = 0; i < 9; i++)
-					d[i] += w * src[i];
-			}
+			for (e = f->pstart[b]; e < f->pstart[b + 1]; e++)
+				blk_add_ab(src, f->pb + 9 * (size_t)e, buf + 9 * (size_t)f->rec1[q++]);
 		}
 		for (e = f->pstart[a]; e < f->pstart[a + 1]; e++)
-			for (r = f->rstart[e]; r < f->rstart[e + 1]; r++) {
-				const double *s = buf + 9 * (size_t)f->rslot[r];
-				double *d = c->A.val + 9 * (size_t)f->rdst[r], w = f->pw[e];
-
-				for (i = 0; i < 9; i++)
-					d[i] += w * s[i];
-			}
+			for (r = f->rstart[e]; r < f->rstart[e + 1]; r++)
+				blk_add_atb(f->pb + 9 * (size_t)e, buf + 9 * (size_t)f->rslot[r],
+				    c->A.val + 9 * (size_t)f->rdst[r]);
 	}
 	for (k = 0; k < (int)c->A.nblocks; k++)
 		if (c->mirror[k] >= 0) {
@@ -715,90 +967,109 @@ galerkin_values(const struct mg_level *f, struct mg_level *c, double *buf)
 	c->val = c->A.val;
 }
 
-/* lines[dir]'s values: the off-line blocks (copied for weft lines), and
- * the block LDL^T of each line (banded, 3 x 3 blocks): with
+/* Position t's row of the level's matrix, read once (the weft lines
+ * read the rows strided): its off-line blocks into own_val, its in-line
+ * blocks (t, t - k) into fac's slots, where they are factored. */
+static void
+copy_row(struct mg_lines *ln, const double *val, int t)
+{
+	int nb = ln->band, k, e;
+	const int *inl = ln->inl + (size_t)t * (size_t)(nb + 1);
+	double *ft = ln->fac + 9 * (size_t)(nb + 1) * (size_t)t;
+
+	for (e = ln->lo[t]; e < ln->lo[t + 1]; e++)
+		memcpy(ln->own_val + 9 * (size_t)e, val + 9 * (size_t)ln->src[e], 9 * sizeof *val);
+	for (k = 0; k <= nb; k++) {
+		double *slot = ft + 9 * (size_t)(k == 0 ? nb : k - 1);
+
+		if (inl[k] >= 0)
+			memcpy(slot, val + 9 * (size_t)inl[k], 9 * sizeof *val);
+		else
+			memset(slot, 0, 9 * sizeof *val);
+	}
+}
+
+/* Position t's step of its line's block LDL^T (banded, 3 x 3 blocks; t0
+ * the line's first position), in place on the blocks copy_row left: with
  * C(t, s) = L(t, s) D_s,
  *   C(t, t-k) = A(t, t-k) - sum_{k' > k} C(t, t-k') L(t-k, t-k')^T,
- *   D_t = A(t, t) - sum_k L(t, t-k) C(t, t-k)^T.
- * 0, or -1 when a pivot is not positive definite. */
+ *   D_t = A(t, t) - sum_k L(t, t-k) C(t, t-k)^T,
+ * then L(t, t-k) = C(t, t-k) D_{t-k}^-1 and D_t^-1 stored. 0, or -1 when
+ * D_t is not positive definite. */
+static int
+factor_position(struct mg_lines *ln, int t, int t0)
+{
+	int nb = ln->band, kmax = t - t0 < nb ? t - t0 : nb, k, k2;
+	size_t stride = 9 * (size_t)(nb + 1);
+	double *lt = ln->fac + stride * (size_t)t, *d = lt + 9 * (size_t)nb, c[9];
+
+	for (k = kmax; k >= 1; k--)
+		for (k2 = k + 1; k2 <= kmax; k2++)
+			blk_sub_abt(lt + 9 * (k2 - 1), ln->fac + stride * (size_t)(t - k) + 9 * (k2 - k - 1),
+			    lt + 9 * (k - 1));
+	for (k = 1; k <= kmax; k++) {
+		double *ck = lt + 9 * (k - 1);
+
+		blk_ab(ck, ln->fac + stride * (size_t)(t - k) + 9 * (size_t)nb, c);
+		blk_sub_abt(c, ck, d);
+		memcpy(ck, c, sizeof c);
+	}
+	memcpy(c, d, sizeof c);
+	return blk_spd_inverse(c, d);
+}
+
+/* lines[dir]'s numbers from the level's matrix: the off-line copies and
+ * the line factors. 0, or -1 when a pivot is not positive definite. */
 static int
 factor_lines(struct mg_level *lv, int dir)
 {
 	struct mg_lines *ln = &lv->lines[dir];
-	int nb = ln->band, l, t, k, k2, i;
-	size_t e, stride = 9 * (size_t)(nb + 1);
+	int l, t;
 
-	if (ln->own_val != NULL) {
-		for (e = 0; e < (size_t)ln->lo[lv->n]; e++)
-			memcpy(ln->own_val + 9 * e, lv->val + 9 * (size_t)ln->src[e], 9 * sizeof *ln->own_val);
-		ln->val = ln->own_val;
-	} else {
-		ln->val = lv->val;
-	}
 	for (l = 0; l < ln->nlines; l++)
 		for (t = ln->start[l]; t < ln->start[l + 1]; t++) {
-			int kmax = t - ln->start[l] < nb ? t - ln->start[l] : nb;
-			const int *inl = ln->inl + (size_t)t * (size_t)(nb + 1);
-			double *lt = ln->fac + stride * (size_t)t, d[9], c[9];
-
-			for (k = kmax; k >= 1; k--) {
-				double *ck = lt + 9 * (k - 1);
-				const double *ls = ln->fac + stride * (size_t)(t - k);
-
-				if (inl[k] >= 0)
-					memcpy(ck, lv->val + 9 * (size_t)inl[k], 9 * sizeof *ck);
-				else
-					memset(ck, 0, 9 * sizeof *ck);
-				for (k2 = k + 1; k2 <= kmax; k2++)
-					blk_sub_abt(lt + 9 * (k2 - 1), ls + 9 * (k2 - k - 1), ck);
-			}
-			memcpy(d, lv->val + 9 * (size_t)inl[0], sizeof d);
-			for (k = 1; k <= kmax; k++) {
-				double *ck = lt + 9 * (k - 1);
-
-				blk_ab(ck, ln->fac + stride * (size_t)(t - k) + 9 * (size_t)nb, c);
-				blk_sub_abt(c, ck, d);
-				for (i = 0; i < 9; i++)
-					ck[i] = c[i];
-			}
-			if (blk_spd_inverse(d, lt + 9 * (size_t)nb) != 0)
+			copy_row(ln, lv->val, t);
+			if (factor_position(ln, t, ln->start[l]) != 0)
 				return -1;
 		}
 	return 0;
 }
 
-/* The coarsest level's dense Cholesky, lower triangle, row-major. */
+/* The coarsest level's matrix into the envelope (its lower triangle),
+ * then factored in place: L L^T, row by row (the envelope holds L's). */
 static int
-dense_factor(struct mg *m)
+band_factor(struct mg_band *b, const struct mg_level *lv)
 {
-	const struct mg_level *lv = &m->lv[m->nlevels - 1];
-	int N = 3 * lv->n, p, k, i, j, r;
-	double *a = m->chol;
+	int p, k, u, v, r, c, q;
 
-	memset(a, 0, (size_t)N * (size_t)N * sizeof *a);
+	memset(b->val, 0, b->off[b->N] * sizeof *b->val);
 	for (p = 0; p < lv->n; p++)
 		for (k = lv->A.start[p]; k < lv->A.start[p + 1]; k++)
-			for (i = 0; i < 3; i++)
-				for (j = 0; j < 3; j++)
-					a[(size_t)(3 * p + i) * N + 3 * lv->A.col[k] + j] =
-					    lv->val[9 * (size_t)k + 3 * i + j];
-	for (j = 0; j < N; j++) {
-		double s = a[(size_t)j * N + j];
+			for (u = 0; u < 3; u++)
+				for (v = 0; v < 3; v++) {
+					r = 3 * b->pos[p] + u;
+					c = 3 * b->pos[lv->A.col[k]] + v;
+					if (c <= r)
+						b->val[b->off[r] + (size_t)(c - b->first[r])] =
+						    lv->val[9 * (size_t)k + 3 * u + v];
+				}
+	for (r = 0; r < b->N; r++) {
+		double *lr = b->val + b->off[r] - b->first[r], s;
 
-		for (k = 0; k < j; k++)
-			s -= a[(size_t)j * N + k] * a[(size_t)j * N + k];
+		for (c = b->first[r]; c < r; c++) {
+			const double *lc = b->val + b->off[c] - b->first[c];
+
+			s = lr[c];
+			for (q = b->first[r] > b->first[c] ? b->first[r] : b->first[c]; q < c; q++)
+				s -= lr[q] * lc[q];
+			lr[c] = s / lc[c];
+		}
+		s = lr[r];
+		for (q = b->first[r]; q < r; q++)
+			s -= lr[q] * lr[q];
 		if (!(s > 0) || !isfinite(s))
 			return -1;
-		a[(size_t)j * N + j] = sqrt(s);
-		for (r = j + 1; r < N; r++) {
-			double t = a[(size_t)r * N + j];
-
-			/* the lower triangle from the upper's mirror: symmetric input */
-			t = (t + a[(size_t)j * N + r]) / 2;
-			for (k = 0; k < j; k++)
-				t -= a[(size_t)r * N + k] * a[(size_t)j * N + k];
-			a[(size_t)r * N + j] = t / a[(size_t)j * N + j];
-		}
+		lr[r] = sqrt(s);
 	}
 	return 0;
 }
@@ -812,63 +1083,74 @@ same_pattern(const struct blockmat *P, const struct blockmat *A)
 	    memcmp(A->col, P->col, A->nblocks * sizeof *A->col) == 0;
 }
 
-int
-mg_setup(struct mg *m, const struct blockmat *A)
+/* All the levels' numbers from A's, or (fine_only) the finest level's
+ * line factors alone. */
+static int
+setup_levels(struct mg *m, const struct blockmat *A, int fine_only)
 {
-	int l;
+	int l, r = 0;
 
 	m->ready = 0;
 	if (!same_pattern(&m->lv[0].A, A))
 		return -1;
 	m->lv[0].val = A->val;
-	for (l = 0; l + 1 < m->nlevels; l++) {
-		galerkin_values(&m->lv[l], &m->lv[l + 1], m->row_buf);
+	for (l = 0; r == 0 && l + 1 < m->nlevels && (l == 0 || !fine_only); l++) {
+		if (!fine_only) {
+			block_weights(&m->lv[l]);
+			galerkin_values(&m->lv[l], &m->lv[l + 1], m->row_buf);
+		}
 		if (factor_lines(&m->lv[l], 0) != 0 || factor_lines(&m->lv[l], 1) != 0)
-			return -1;
+			r = -1;
 	}
-	if (dense_factor(m) != 0)
-		return -1;
-	m->ready = 1;
-	return 0;
+	if (r == 0 && !fine_only && band_factor(&m->band, &m->lv[m->nlevels - 1]) != 0)
+		r = -1;
+	m->lv[0].val = NULL;	/* copied where needed: A may change */
+	m->ready = r == 0;
+	return r;
+}
+
+int
+mg_setup(struct mg *m, const struct blockmat *A)
+{
+	return setup_levels(m, A, 0);
 }
 
 int
 mg_update_fine(struct mg *m, const struct blockmat *A)
 {
-	if (!m->ready || m->nlevels == 1)
-		return mg_setup(m, A);
-	m->ready = 0;
-	if (!same_pattern(&m->lv[0].A, A))
-		return -1;
-	m->lv[0].val = A->val;
-	if (factor_lines(&m->lv[0], 0) != 0 || factor_lines(&m->lv[0], 1) != 0)
-		return -1;
-	m->ready = 1;
-	return 0;
+	return setup_levels(m, A, m->ready && m->nlevels > 1);
 }
 
 /* ---- apply ---- */
 
+/* x = (L L^T)^-1 r on the coarsest level (r, x by node). */
 static void
-dense_solve(const struct mg *m, const double *b, double *x)
+band_solve(const struct mg_band *b, int n, const double *r, double *x)
 {
-	int N = 3 * m->ncoarse, i, k;
-	const double *a = m->chol;
+	double *y = b->y;
+	int p, i, q;
 
-	for (i = 0; i < N; i++) {
-		double s = b[i];
+	for (p = 0; p < n; p++)
+		for (i = 0; i < 3; i++)
+			y[3 * b->pos[p] + i] = r[3 * p + i];
+	for (i = 0; i < b->N; i++) {
+		const double *li = b->val + b->off[i] - b->first[i];
+		double s = y[i];
 
-		for (k = 0; k < i; k++)
-			s -= a[(size_t)i * N + k] * x[k];
-		x[i] = s / a[(size_t)i * N + i];
+		for (q = b->first[i]; q < i; q++)
+			s -= li[q] * y[q];
+		y[i] = s / li[i];
 	}
-	for (i = N - 1; i >= 0; i--) {
-		double s = x[i];
+	for (i = b->N - 1; i >= 0; i--) {
+		const double *li = b->val + b->off[i] - b->first[i];
 
-		for (k = i + 1; k < N; k++)
-			s -= a[(size_t)k * N + i] * x[k];
-		x[i] = s / a[(size_t)i * N + i];
+		y[i] /= li[i];
+		for (q = b->first[i]; q < i; q++)
+			y[q] -= li[q] * y[i];
 	}
+	for (p = 0; p < n; p++)
+		for (i = 0; i < 3; i++)
+			x[3 * p + i] = y[3 * b->pos[p] + i];
 }
 
 /* One line's Gauss-Seidel step: its nodes' z from the line's system with
@@ -879,8 +1161,8 @@ relax_line(const struct mg_lines *ln, int l, const double *r, double *z, int fro
 {
 	int t0 = ln->start[l], t1 = ln->start[l + 1], nb = ln->band, t, k;
 	size_t stride = 9 * (size_t)(nb + 1);
-	const double *val = ln->val;
-	const int *col = ln->col;
+	const double *val = ln->own_val;
+	const int *col = ln->own_col;
 
 	/* forward substitution, the right side made as it goes */
 	for (t = t0; t < t1; t++) {
@@ -933,7 +1215,7 @@ residual_after_sweep(const struct mg_level *lv, int dir, const double *dz, doubl
 	for (t = 0; t < lv->n; t++) {
 		double s[3] = { 0, 0, 0 };
 
-		row_mulsub(ln->val, ln->col, ln->hi[t], ln->lo[t + 1], dz, s);
+		row_mulsub(ln->own_val, ln->own_col, ln->hi[t], ln->lo[t + 1], dz, s);
 		res[3 * (size_t)ln->order[t]] = -s[0];
 		res[3 * (size_t)ln->order[t] + 1] = -s[1];
 		res[3 * (size_t)ln->order[t] + 2] = -s[2];
@@ -949,11 +1231,12 @@ restrict_residual(const struct mg_level *f, const struct mg_level *c, const doub
 	memset(rc, 0, 3 * (size_t)c->n * sizeof *rc);
 	for (p = 0; p < f->n; p++)
 		for (e = f->pstart[p]; e < f->pstart[p + 1]; e++) {
-			double *d = rc + 3 * f->par[e], w = f->pw[e];
+			const double *w = f->pb + 9 * (size_t)e, *x = res + 3 * p;
+			double *d = rc + 3 * f->par[e];
 
-			d[0] += w * res[3 * p];
-			d[1] += w * res[3 * p + 1];
-			d[2] += w * res[3 * p + 2];
+			d[0] += w[0] * x[0] + w[3] * x[1] + w[6] * x[2];
+			d[1] += w[1] * x[0] + w[4] * x[1] + w[7] * x[2];
+			d[2] += w[2] * x[0] + w[5] * x[1] + w[8] * x[2];
 		}
 }
 
@@ -965,12 +1248,11 @@ prolong_add(const struct mg_level *f, const double *zc, double *z)
 
 	for (p = 0; p < f->n; p++)
 		for (e = f->pstart[p]; e < f->pstart[p + 1]; e++) {
-			const double *s = zc + 3 * f->par[e];
-			double w = f->pw[e];
+			const double *w = f->pb + 9 * (size_t)e, *x = zc + 3 * f->par[e];
 
-			z[3 * p] += w * s[0];
-			z[3 * p + 1] += w * s[1];
-			z[3 * p + 2] += w * s[2];
+			z[3 * p] += w[0] * x[0] + w[1] * x[1] + w[2] * x[2];
+			z[3 * p + 1] += w[3] * x[0] + w[4] * x[1] + w[5] * x[2];
+			z[3 * p + 2] += w[6] * x[0] + w[7] * x[1] + w[8] * x[2];
 		}
 }
 
@@ -981,7 +1263,7 @@ vcycle(struct mg *m, int l, const double *r, double *z)
 	size_t i;
 
 	if (l == m->nlevels - 1) {
-		dense_solve(m, r, z);
+		band_solve(&m->band, lv->n, r, z);
 		return;
 	}
 	c = &m->lv[l + 1];
@@ -1001,5 +1283,9 @@ vcycle(struct mg *m, int l, const double *r, double *z)
 void
 mg_apply(struct mg *m, const double *r, double *z)
 {
+	if (!m->ready) {	/* no setup (or a failed one): the identity */
+		memcpy(z, r, 3 * (size_t)m->lv[0].n * sizeof *z);
+		return;
+	}
 	vcycle(m, 0, r, z);
 }

@@ -56,9 +56,9 @@ row_mulsub(const double *val, const int *col, int k0, int k1, const double *x, d
 		const double *b = val + 9 * (size_t)k, *xc = x + 3 * (size_t)col[k];
 		double x0 = xc[0], x1 = xc[1], x2 = xc[2];
 
-		s0 -= b[0] * x0 + b[1] * x1 + b[2] * x2;
-		s1 -= b[3] * x0 + b[4] * x1 + b[5] * x2;
-		s2 -= b[6] * x0 + b[7] * x1 + b[8] * x2;
+		s0 -= b[0] * x0 + b[3] * x1 + b[6] * x2;
+		s1 -= b[1] * x0 + b[4] * x1 + b[7] * x2;
+		s2 -= b[2] * x0 + b[5] * x1 + b[8] * x2;
 	}
 	s[0] = s0;
 	s[1] = s1;
@@ -74,72 +74,76 @@ blk_mul(const double *b, const double *x, double *y)
 	y[2] = b[6] * x[0] + b[7] * x[1] + b[8] * x[2];
 }
 
-/* C -= A B^T */
+/* C -= A B^T, as blk_ab */
 static inline void
 blk_sub_abt(const double *a, const double *b, double *c)
 {
-	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
-	double b6 = b[6], b7 = b[7], b8 = b[8];
-	int i;
+	double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3], a4 = a[4], a5 = a[5], a6 = a[6], a7 = a[7], a8 = a[8];
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5], b6 = b[6], b7 = b[7], b8 = b[8];
 
-	for (i = 0; i < 9; i += 3) {
-		double a0 = a[i], a1 = a[i + 1], a2 = a[i + 2];
-
-		c[i] -= a0 * b0 + a1 * b1 + a2 * b2;
-		c[i + 1] -= a0 * b3 + a1 * b4 + a2 * b5;
-		c[i + 2] -= a0 * b6 + a1 * b7 + a2 * b8;
-	}
+	c[0] -= a0 * b0 + a1 * b1 + a2 * b2;
+	c[1] -= a0 * b3 + a1 * b4 + a2 * b5;
+	c[2] -= a0 * b6 + a1 * b7 + a2 * b8;
+	c[3] -= a3 * b0 + a4 * b1 + a5 * b2;
+	c[4] -= a3 * b3 + a4 * b4 + a5 * b5;
+	c[5] -= a3 * b6 + a4 * b7 + a5 * b8;
+	c[6] -= a6 * b0 + a7 * b1 + a8 * b2;
+	c[7] -= a6 * b3 + a7 * b4 + a8 * b5;
+	c[8] -= a6 * b6 + a7 * b7 + a8 * b8;
 }
 
-/* C = A B */
+/* C = A B (A and B read first: C may alias neither) */
 static inline void
 blk_ab(const double *a, const double *b, double *c)
 {
-	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
-	double b6 = b[6], b7 = b[7], b8 = b[8];
-	int i;
+	double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3], a4 = a[4], a5 = a[5], a6 = a[6], a7 = a[7], a8 = a[8];
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5], b6 = b[6], b7 = b[7], b8 = b[8];
 
-	for (i = 0; i < 9; i += 3) {
-		double a0 = a[i], a1 = a[i + 1], a2 = a[i + 2];
-
-		c[i] = a0 * b0 + a1 * b3 + a2 * b6;
-		c[i + 1] = a0 * b1 + a1 * b4 + a2 * b7;
-		c[i + 2] = a0 * b2 + a1 * b5 + a2 * b8;
-	}
+	c[0] = a0 * b0 + a1 * b3 + a2 * b6;
+	c[1] = a0 * b1 + a1 * b4 + a2 * b7;
+	c[2] = a0 * b2 + a1 * b5 + a2 * b8;
+	c[3] = a3 * b0 + a4 * b3 + a5 * b6;
+	c[4] = a3 * b1 + a4 * b4 + a5 * b7;
+	c[5] = a3 * b2 + a4 * b5 + a5 * b8;
+	c[6] = a6 * b0 + a7 * b3 + a8 * b6;
+	c[7] = a6 * b1 + a7 * b4 + a8 * b7;
+	c[8] = a6 * b2 + a7 * b5 + a8 * b8;
 }
 
-/* C += A B, written out: the Galerkin product's inner loop */
+/* C += A B, as blk_ab */
 static inline void
 blk_add_ab(const double *a, const double *b, double *c)
 {
-	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
-	double b6 = b[6], b7 = b[7], b8 = b[8];
-	int i;
+	double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3], a4 = a[4], a5 = a[5], a6 = a[6], a7 = a[7], a8 = a[8];
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5], b6 = b[6], b7 = b[7], b8 = b[8];
 
-	for (i = 0; i < 9; i += 3) {
-		double a0 = a[i], a1 = a[i + 1], a2 = a[i + 2];
-
-		c[i] += a0 * b0 + a1 * b3 + a2 * b6;
-		c[i + 1] += a0 * b1 + a1 * b4 + a2 * b7;
-		c[i + 2] += a0 * b2 + a1 * b5 + a2 * b8;
-	}
+	c[0] += a0 * b0 + a1 * b3 + a2 * b6;
+	c[1] += a0 * b1 + a1 * b4 + a2 * b7;
+	c[2] += a0 * b2 + a1 * b5 + a2 * b8;
+	c[3] += a3 * b0 + a4 * b3 + a5 * b6;
+	c[4] += a3 * b1 + a4 * b4 + a5 * b7;
+	c[5] += a3 * b2 + a4 * b5 + a5 * b8;
+	c[6] += a6 * b0 + a7 * b3 + a8 * b6;
+	c[7] += a6 * b1 + a7 * b4 + a8 * b7;
+	c[8] += a6 * b2 + a7 * b5 + a8 * b8;
 }
 
-/* C += A^T B, written out as blk_add_ab */
+/* C += A^T B, as blk_ab */
 static inline void
 blk_add_atb(const double *a, const double *b, double *c)
 {
-	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5];
-	double b6 = b[6], b7 = b[7], b8 = b[8];
-	int i;
+	double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3], a4 = a[4], a5 = a[5], a6 = a[6], a7 = a[7], a8 = a[8];
+	double b0 = b[0], b1 = b[1], b2 = b[2], b3 = b[3], b4 = b[4], b5 = b[5], b6 = b[6], b7 = b[7], b8 = b[8];
 
-	for (i = 0; i < 3; i++) {
-		double a0 = a[i], a1 = a[3 + i], a2 = a[6 + i];
-
-		c[3 * i] += a0 * b0 + a1 * b3 + a2 * b6;
-		c[3 * i + 1] += a0 * b1 + a1 * b4 + a2 * b7;
-		c[3 * i + 2] += a0 * b2 + a1 * b5 + a2 * b8;
-	}
+	c[0] += a0 * b0 + a3 * b3 + a6 * b6;
+	c[1] += a0 * b1 + a3 * b4 + a6 * b7;
+	c[2] += a0 * b2 + a3 * b5 + a6 * b8;
+	c[3] += a1 * b0 + a4 * b3 + a7 * b6;
+	c[4] += a1 * b1 + a4 * b4 + a7 * b7;
+	c[5] += a1 * b2 + a4 * b5 + a7 * b8;
+	c[6] += a2 * b0 + a5 * b3 + a8 * b6;
+	c[7] += a2 * b1 + a5 * b4 + a8 * b7;
+	c[8] += a2 * b2 + a5 * b5 + a8 * b8;
 }
 
 /* inv = D^-1 for D made symmetric ((D + D^T)/2, removing rounding's
@@ -977,8 +981,14 @@ copy_row(struct mg_lines *ln, const double *val, int t)
 	const int *inl = ln->inl + (size_t)t * (size_t)(nb + 1);
 	double *ft = ln->fac + 9 * (size_t)(nb + 1) * (size_t)t;
 
-	for (e = ln->lo[t]; e < ln->lo[t + 1]; e++)
-		memcpy(ln->own_val + 9 * (size_t)e, val + 9 * (size_t)ln->src[e], 9 * sizeof *val);
+	for (e = ln->lo[t]; e < ln->lo[t + 1]; e++) {
+		const double *b = val + 9 * (size_t)ln->src[e];
+		double *d = ln->own_val + 9 * (size_t)e;
+
+		d[0] = b[0], d[1] = b[3], d[2] = b[6];
+		d[3] = b[1], d[4] = b[4], d[5] = b[7];
+		d[6] = b[2], d[7] = b[5], d[8] = b[8];
+	}
 	for (k = 0; k <= nb; k++) {
 		double *slot = ft + 9 * (size_t)(k == 0 ? nb : k - 1);
 

@@ -441,43 +441,52 @@ ap_row_slots(const struct mg_level *f, int a, int *mark, int *tcol, int *rec1)
 	return ns;
 }
 
-/* c's pattern, P^T A P's (row I: the slots of the rows of I's children),
- * and the recipe of its values (see struct mg_level). 0, or -1 out of
- * memory. */
+/* The recipe's first half: each row's slots (their coarse columns in
+ * tcol, from tstart) and rec1; mark: scratch over the nc coarse nodes.
+ * 0, or -1 out of memory. */
 static int
-galerkin_recipe(struct mg_level *f, struct mg_level *c, int *mark)
+recipe_slots(struct mg_level *f, int nc, int *mark, int **tcol)
 {
-	int ok = 1, a, e, s, I, k, nrec1 = 0, nslot = 0, npair = 0, nr = 0, r;
-	int *tcol = NULL, *cnt = zalloc((size_t)c->n + 1, sizeof *cnt, &ok), *cols = NULL;
+	int ok = 1, a, k, I, nrec1 = 0, nslot = 0;
 
-	f->tstart = zalloc((size_t)f->n + 1, sizeof *f->tstart, &ok);
-	f->rstart = zalloc((size_t)f->pstart[f->n] + 1, sizeof *f->rstart, &ok);
-	if (!ok)
-		goto out;
-	for (I = 0; I < c->n; I++)
-		mark[I] = -1;
 	for (k = 0; k < f->A.start[f->n]; k++)
 		nrec1 += f->pstart[f->A.col[k] + 1] - f->pstart[f->A.col[k]];
-	if ((tcol = zalloc((size_t)nrec1, sizeof *tcol, &ok)) == NULL ||
-	    (f->rec1 = zalloc((size_t)nrec1, sizeof *f->rec1, &ok)) == NULL)
-		goto out;
-	/* the slots of every row, one after the other in tcol */
+	f->tstart = zalloc((size_t)f->n + 1, sizeof *f->tstart, &ok);
+	f->rec1 = zalloc((size_t)nrec1, sizeof *f->rec1, &ok);
+	*tcol = zalloc((size_t)nrec1, sizeof **tcol, &ok);	/* slots <= pairs */
+	if (!ok)
+		return -1;
+	for (I = 0; I < nc; I++)
+		mark[I] = -1;
 	for (a = 0, nrec1 = 0; a < f->n; a++) {
 		f->tstart[a] = nslot;
-		nslot += ap_row_slots(f, a, mark, tcol + nslot, f->rec1 + nrec1);
+		nslot += ap_row_slots(f, a, mark, *tcol + nslot, f->rec1 + nrec1);
 		for (k = f->A.start[a]; k < f->A.start[a + 1]; k++)
 			nrec1 += f->pstart[f->A.col[k] + 1] - f->pstart[f->A.col[k]];
 	}
 	f->tstart[f->n] = nslot;
-	/* the pattern: row I gets the slots of each row a it interpolates to */
+	return 0;
+}
+
+/* c's pattern, P^T A P's: row I gets the slots of each row a that it
+ * interpolates to. 0, or -1 out of memory. */
+static int
+coarse_pattern(const struct mg_level *f, struct mg_level *c, const int *tcol)
+{
+	int ok = 1, a, e, s, I, r;
+	int *cnt = zalloc((size_t)c->n + 1, sizeof *cnt, &ok), *cols = NULL;
+
+	if (!ok)
+		return -1;
 	for (a = 0; a < f->n; a++)
 		for (e = f->pstart[a]; e < f->pstart[a + 1]; e++)
 			cnt[f->par[e] + 1] += f->tstart[a + 1] - f->tstart[a];
 	for (I = 0; I < c->n; I++)
 		cnt[I + 1] += cnt[I];
-	npair = cnt[c->n];
-	if ((cols = zalloc((size_t)npair, sizeof *cols, &ok)) == NULL)
-		goto out;
+	if ((cols = zalloc((size_t)cnt[c->n], sizeof *cols, &ok)) == NULL) {
+		free(cnt);
+		return -1;
+	}
 	for (a = 0; a < f->n; a++)
 		for (e = f->pstart[a]; e < f->pstart[a + 1]; e++)
 			for (s = f->tstart[a]; s < f->tstart[a + 1]; s++)
@@ -485,21 +494,31 @@ galerkin_recipe(struct mg_level *f, struct mg_level *c, int *mark)
 	for (I = c->n; I > 0; I--)	/* cnt[I] had moved to row I's end */
 		cnt[I] = cnt[I - 1];
 	cnt[0] = 0;
-	if (blockmat_init_pattern(&c->A, c->n, cnt, cols) != 0) {
-		ok = 0;
-		goto out;
-	}
-	/* the recipe's second half: the upper triangle's (I <= J) pairs */
+	r = blockmat_init_pattern(&c->A, c->n, cnt, cols);
+	free(cnt);
+	free(cols);
+	return r;
+}
+
+/* The recipe's second half: for each interpolation entry, the slots it
+ * takes into the upper triangle (I <= J), and c's mirror. 0, or -1 out of
+ * memory. */
+static int
+recipe_pairs(struct mg_level *f, struct mg_level *c, const int *tcol)
+{
+	int ok = 1, a, e, s, I, k, nr = 0, r = 0;
+
 	for (a = 0; a < f->n; a++)
 		for (e = f->pstart[a]; e < f->pstart[a + 1]; e++)
 			for (s = f->tstart[a]; s < f->tstart[a + 1]; s++)
 				nr += f->par[e] <= tcol[s];
+	f->rstart = zalloc((size_t)f->pstart[f->n] + 1, sizeof *f->rstart, &ok);
 	f->rslot = zalloc((size_t)nr, sizeof *f->rslot, &ok);
 	f->rdst = zalloc((size_t)nr, sizeof *f->rdst, &ok);
 	c->mirror = zalloc(c->A.nblocks, sizeof *c->mirror, &ok);
 	if (!ok)
-		goto out;
-	for (a = 0, r = 0; a < f->n; a++)
+		return -1;
+	for (a = 0; a < f->n; a++)
 		for (e = f->pstart[a]; e < f->pstart[a + 1]; e++) {
 			f->rstart[e] = r;
 			for (s = f->tstart[a]; s < f->tstart[a + 1]; s++)
@@ -512,11 +531,20 @@ galerkin_recipe(struct mg_level *f, struct mg_level *c, int *mark)
 	for (I = 0; I < c->n; I++)
 		for (k = c->A.start[I]; k < c->A.start[I + 1]; k++)
 			c->mirror[k] = c->A.col[k] < I ? blockmat_find(&c->A, c->A.col[k], I) : -1;
-out:
+	return 0;
+}
+
+/* c's pattern, P^T A P's, and the recipe of its values (see struct
+ * mg_level); mark: scratch, c->n. 0, or -1 out of memory. */
+static int
+galerkin_recipe(struct mg_level *f, struct mg_level *c, int *mark)
+{
+	int *tcol = NULL, r;
+
+	r = recipe_slots(f, c->n, mark, &tcol) != 0 || coarse_pattern(f, c, tcol) != 0 ||
+	    recipe_pairs(f, c, tcol) != 0 ? -1 : 0;
 	free(tcol);
-	free(cnt);
-	free(cols);
-	return ok ? 0 : -1;
+	return r;
 }
 
 /* Sorts one line's nodes into lines[dir] and notes, for each node, its

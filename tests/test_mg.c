@@ -467,7 +467,7 @@ check_cloth(struct sys *s, const char *name, int *iters)
 	}
 }
 
-/* (a), (c), (d): the shipped cloths. */
+/* (a), (c), (d): the shipped cloths (and a wider strip). */
 static void
 shipped_cloths_converge(void **state)
 {
@@ -477,6 +477,8 @@ shipped_cloths_converge(void **state)
 		{ "tablecloth 25x25", SCENE_DIR "tablecloth.scene", NULL, NULL },
 		{ "strip 125x3", SCENE_DIR "strip.scene", NULL, NULL },
 		{ "strip 41x3", SCENE_DIR "strip.scene", "nodes = 125 3", "nodes = 41 3" },
+		/* coarsened once, to a 63 x 3 strip solved directly */
+		{ "strip 125x5", SCENE_DIR "strip.scene", "nodes = 125 3", "nodes = 125 5" },
 		{ "disc 31x31", SCENE_DIR "drape.scene", NULL, NULL },
 	};
 	size_t c;
@@ -586,16 +588,17 @@ symmetric_positive_definite(void **state)
 	}
 }
 
-/* A grid too small to coarsen (4 x 4, and a 3 x 9 strip: 27 nodes) is one
- * level, solved exactly by the dense Cholesky: A B r = r. */
+/* A grid too small or too narrow to coarsen (2 x 2, 4 x 4, a 3 x 9 and a
+ * 40 x 2 strip) is one level, solved exactly by the envelope Cholesky:
+ * A B r = r. */
 static void
 exact_on_one_level(void **state)
 {
-	static const char *const sizes[] = { "4 4", "3 9" };
+	static const char *const sizes[] = { "2 2", "4 4", "3 9", "40 2" };
 	size_t c, i;
 
 	(void)state;
-	for (c = 0; c < 2; c++) {
+	for (c = 0; c < sizeof sizes / sizeof *sizes; c++) {
 		char text[600];
 		struct sys s;
 		struct mg m;

@@ -41,11 +41,13 @@
  * multigrid for cloth simulation", ACM TOG 34(6) 2015, solve the same
  * systems on unstructured meshes; the grid lets us use its lines instead.
  *
- * Costs, all O(n): mg_init (patterns, lines, Galerkin recipes); mg_setup
- * (interpolation, Galerkin products, line factors, the coarsest factor),
- * about 35 products with A; mg_update_fine about 6; mg_apply about 10
- * (4 on the finest level's sweeps). Memory: about 3.5 KB a node besides
- * A's 0.9 KB. Deterministic (fixed loop orders, no threads, no global
+ * Costs, all O(n) in flops: mg_init (patterns, lines, Galerkin recipes);
+ * mg_setup (interpolation, Galerkin products, line factors, the coarsest
+ * factor), the time of about 32 products with A at 25^2; mg_update_fine
+ * about 6; mg_apply about 9 (4 on the finest level's sweeps). Beyond the
+ * caches (100^2) memory traffic makes them 1.5 to 2 times that. Memory:
+ * about 4.5 KB a node besides A's 0.95 KB (0.8 KB on a strip). bench/mg.sh
+ * measures them. Deterministic (fixed loop orders, no threads, no global
  * state); nothing here prints. */
 #ifndef DRAPE_MG_H
 #define DRAPE_MG_H
@@ -66,7 +68,9 @@ struct mg_lines {
 	/* position t's blocks off its line, copied in line order (one stream
 	 * for the sweeps): the earlier lines' [lo[t], mid[t]), the later
 	 * lines' [hi[t], lo[t + 1]) of own_col (their columns), own_val
-	 * (their values) and src (their blocks in the level's matrix) */
+	 * (their values, each block transposed: column after column, so that
+	 * the compiler pairs two rows' products) and src (their blocks in the
+	 * level's matrix) */
 	int *lo, *mid, *hi;
 	int *own_col, *src;
 	double *own_val;
@@ -131,10 +135,11 @@ int mg_init(struct mg *m, const struct cloth *cl);
 void mg_free(struct mg *m);	/* a zeroed one is fine */
 
 /* For an SPD matrix A on cl's pattern (blockmat_init_cloth's): the
- * Galerkin coarse operators, the line factors, the coarsest Cholesky.
- * What mg_apply needs is copied: A may change (be reassembled) after.
- * 0; -1 when A's pattern is not cl's or a pivot is not positive (A not
- * positive definite), m then unusable until a setup succeeds. */
+ * interpolation, the Galerkin coarse operators, the line factors, the
+ * coarsest Cholesky. What mg_apply needs is copied: A may change (be
+ * reassembled) after. 0; -1 when A's pattern is not cl's or a pivot is
+ * not positive (A not positive definite), mg_apply then giving z = r
+ * until a setup succeeds. */
 int mg_setup(struct mg *m, const struct blockmat *A);
 
 /* The finest level's line factors alone from A, the interpolation and

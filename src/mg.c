@@ -662,6 +662,26 @@ out:
 	return ok ? 0 : -1;
 }
 
+/* cl's pattern, blockmat_init_cloth's, alone: its values are the
+ * caller's, its element slots are the caller's assembly's. 0, or -1 out
+ * of memory. */
+static int
+finest_pattern(struct blockmat *P, const struct cloth *cl)
+{
+	struct blockmat full;
+	int r;
+
+	if (blockmat_init_cloth(&full, cl) != 0)
+		return -1;
+	r = blockmat_init_pattern(P, full.n, full.start, full.col);
+	blockmat_free(&full);
+	if (r == 0) {
+		free(P->val);
+		P->val = NULL;
+	}
+	return r;
+}
+
 /* Level 0: cl's grid and pattern (its values are the caller's). */
 static int
 finest_level(struct mg_level *lv, const struct cloth *cl)
@@ -684,12 +704,7 @@ finest_level(struct mg_level *lv, const struct cloth *cl)
 		lv->xu[i] = i;
 	for (i = 0; i < cl->nv; i++)
 		lv->xv[i] = i;
-	if (blockmat_init_cloth(&lv->A, cl) != 0)
-		return -1;
-	/* the pattern alone: mg_setup reads the caller's values */
-	free(lv->A.val);
-	lv->A.val = NULL;
-	return 0;
+	return finest_pattern(&lv->A, cl);
 }
 
 static int

@@ -13,13 +13,21 @@
  * penalties and friction. Newton's method with a line search on Phi
  * descends to it whatever the stiffness: the yarns' stretch, shear and
  * bending are taken together, implicitly, with no substep. The first step
- * is backward Euler (beta = h, xhat = x_n, vhat = v_n): BDF2 needs the
- * state one step back, which the step keeps (its history), and a keyframe
- * holds.
+ * takes the history of the parabola through the start state (the state
+ * one step back at its present acceleration): BDF2 needs it, the step
+ * keeps it, and a keyframe holds it. Newton starts from the step's start,
+ * which the energy's barriers allow (no hinge folded right back), and the
+ * line search keeps every iterate so.
  *
  * BDF2 is L-stable, so the stiff vibrations die within steps, and of
- * second order: its numerical damping of the slow motion falls as (h w)^4
- * where backward Euler's falls as (h w)^2.
+ * second order: over 100 steps it keeps 99.5 % of a mode at h w = 0.1 and
+ * 72 % at 0.3 (backward Euler 37 % and 0). At a step of a frame that is
+ * still most motion faster than a few hertz, so the step gives back what
+ * it took (bdf2_correct_energy): the energy the system had, less the work
+ * of its contacts, friction and damping, plus that of its held nodes, is
+ * its budget, and the free nodes' velocities are scaled to meet it. No
+ * step ends with more; the undamped hanging strip keeps 54 % of RK4's
+ * energy above rest at 1 s (7.5 % without).
  *
  * Contacts are terms of Phi, found once a step at its start:
  *   - analytic obstacles: a node within reach of one gets a penalty
@@ -57,6 +65,7 @@
 #include "blockmat.h"
 #include "forces.h"
 #include "jacobian.h"
+#include "mg.h"
 #include "prescribed.h"
 #include "scene.h"
 
@@ -91,9 +100,14 @@ struct bdf2 {
 	const struct prescribed *pr;
 	struct jacobian jc;
 	struct blockmat H;	/* the Newton system, with the pairs' diagonal blocks */
+	struct mg mg;		/* its preconditioner */
+	bool use_mg;		/* the last setup succeeded (else block Jacobi) */
+	double kmax;		/* N/m: the stiffest spring's */
 	double tol;		/* converged when every free node's |dPhi/dx|/m <= tol (m/s^2) */
 	int max_newton, max_cg;
-	double last_step;	/* m: the last Newton step's largest move */
+	double last_step;
+	bool lb_reset, lb_have_prev;
+	double *lb_xprev, *lb_gprev;	/* m: the last Newton step's largest move */
 	/* the state one step back (positions then velocities, 6n), and
 	 * whether there is one */
 	double *hist;
@@ -109,12 +123,19 @@ struct bdf2 {
 	size_t noc, occap;
 	struct bdf2_pair_term *pt;
 	size_t ptcap;
+	/* the pairs that push at the iterate (its system's), and those whose
+	 * terms the potential takes (the line search's may push ahead) */
+	size_t *act, nact, *live, nlive;
 	struct contacts *ct;	/* the step's pairs, and their geometry */
 	const struct collide *col;
 	/* the normals along which each node's history is made anew at the
 	 * commit (up to 3 a node) */
 	double *rdir;
 	unsigned char *nreset;
+	/* the step's energy (J): at its start, at the solve's end, and the
+	 * budget (bdf2_correct_energy) */
+	double e_start, e_solved, e_budget;
+	double last_restored, restored;	/* J: given back, the last step and in all */
 	/* so far */
 	long steps, newton, cg, unconverged, cuts;
 	int last_newton, last_cg;
@@ -138,6 +159,13 @@ void bdf2_set_stop(struct bdf2 *b, const volatile sig_atomic_t *flag);
  * unfinished. */
 void bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
     struct contacts *ct, const struct collide *col);
+
+/* After the exact check: the free nodes' velocities scaled so that the
+ * system's energy is the step's budget (bdf2.c energy_budget): its start,
+ * the work of the held nodes' motion, of the contacts and the damping, and
+ * what the check took away. BDF2's own damping is given back, and no step
+ * ends with more than its budget. */
+void bdf2_correct_energy(struct bdf2 *b, double *y1);
 
 /* The step's contacts with analytic obstacles as events of col (the
  * pairs' are contacts_events'), at the step's end state y1; and marks the

@@ -227,6 +227,33 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 	}
 }
 
+/* A hinge's d kb / dx as 3 rows of 9 (nodes a, b, c, 3 columns each),
+ * from hinge_dkb's formula written out: node a's columns are
+ * (2 [e2]x + kb e2^T) / D, node c's (2 [e1]x - kb e1^T) / D ([v]x the
+ * matrix of v x), node b's minus their sum. */
+static void
+hinge_jacobian(const double *e, double id, double J[3][9])
+{
+	const double *e1 = e, *e2 = e + 3, *kb = e + 6;
+	int r, c;
+
+	for (r = 0; r < 3; r++)
+		for (c = 0; c < 3; c++) {
+			J[r][c] = kb[r] * e2[c] * id;
+			J[r][6 + c] = -kb[r] * e1[c] * id;
+		}
+	/* [v]x = ((0, -v2, v1), (v2, 0, -v0), (-v1, v0, 0)) */
+	J[0][1] -= 2 * e2[2] * id; J[0][2] += 2 * e2[1] * id;
+	J[1][0] += 2 * e2[2] * id; J[1][2] -= 2 * e2[0] * id;
+	J[2][0] -= 2 * e2[1] * id; J[2][1] += 2 * e2[0] * id;
+	J[0][7] -= 2 * e1[2] * id; J[0][8] += 2 * e1[1] * id;
+	J[1][6] += 2 * e1[2] * id; J[1][8] -= 2 * e1[0] * id;
+	J[2][6] -= 2 * e1[1] * id; J[2][7] += 2 * e1[0] * id;
+	for (r = 0; r < 3; r++)
+		for (c = 0; c < 3; c++)
+			J[r][3 + c] = -J[r][c] - J[r][6 + c];
+}
+
 /* Block k of A += s * the 3 x 3 matrix m (row-major). */
 static void
 add_block(struct blockmat *A, int k, const double *m, double s)
@@ -263,39 +290,48 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 	}
 	for (s = 0; s < cl->ncorners; s++) {
 		const double *e = jc->corner + 6 * s;
-		vec3 g[3] = { v3_neg(v3_add(v3_load(e), v3_load(e + 3))), v3_load(e), v3_load(e + 3) };
-		double kc = ck * cl->corners[s].k;
+		double g[3][3] = { { -e[0] - e[3], -e[1] - e[4], -e[2] - e[5] }, { e[0], e[1], e[2] },
+		    { e[3], e[4], e[5] } }, kc = ck * cl->corners[s].k;
+		const int *slot = A->corner_slot + 9 * s;
 
+		/* k g_m g_l^T: the upper blocks, mirrored */
 		for (m = 0; m < 3; m++)
-			for (l = 0; l < 3; l++) {
-				double b[9], a[3] = { g[m].x, g[m].y, g[m].z }, c[3] = { g[l].x, g[l].y, g[l].z };
+			for (l = m; l < 3; l++) {
+				double *b1 = A->val + 9 * (size_t)slot[3 * m + l];
+				double *b2 = A->val + 9 * (size_t)slot[3 * l + m];
 
 				for (i = 0; i < 3; i++)
-					for (j = 0; j < 3; j++)
-						b[3 * i + j] = a[i] * c[j];
-				add_block(A, A->corner_slot[9 * s + 3 * m + l], b, kc);
+					for (j = 0; j < 3; j++) {
+						double v = kc * g[m][i] * g[l][j];
+
+						b1[3 * i + j] += v;
+						if (l != m)
+							b2[3 * j + i] += v;
+					}
 			}
 	}
 	for (s = 0; s < cl->nhinges; s++) {
 		const double *e = jc->hinge + 10 * s;
-		vec3 z = v3(0, 0, 0), w[3][3];	/* w[node][axis]: J's columns */
-		double kh = ck * cl->hinges[s].k;
+		const int *slot = A->hinge_slot + 9 * s;
+		double kh = ck * cl->hinges[s].k, J[3][9], id = e[9];
 
-		for (i = 0; i < 3; i++) {
-			vec3 u = v3(i == 0, i == 1, i == 2);
-
-			w[0][i] = hinge_dkb(e, v3_neg(u), z);
-			w[1][i] = hinge_dkb(e, u, v3_neg(u));
-			w[2][i] = hinge_dkb(e, z, u);
-		}
+		hinge_jacobian(e, id, J);
+		/* k J_m^T J_l, the upper blocks mirrored */
 		for (m = 0; m < 3; m++)
-			for (l = 0; l < 3; l++) {
-				double b[9];
+			for (l = m; l < 3; l++) {
+				double *b1 = A->val + 9 * (size_t)slot[3 * m + l];
+				double *b2 = A->val + 9 * (size_t)slot[3 * l + m];
 
 				for (i = 0; i < 3; i++)
-					for (j = 0; j < 3; j++)
-						b[3 * i + j] = v3_dot(w[m][i], w[l][j]);
-				add_block(A, A->hinge_slot[9 * s + 3 * m + l], b, kh);
+					for (j = 0; j < 3; j++) {
+						double v = kh * (J[0][3 * m + i] * J[0][3 * l + j] +
+						    J[1][3 * m + i] * J[1][3 * l + j] +
+						    J[2][3 * m + i] * J[2][3 * l + j]);
+
+						b1[3 * i + j] += v;
+						if (l != m)
+							b2[3 * j + i] += v;
+					}
 			}
 	}
 }

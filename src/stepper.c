@@ -529,6 +529,8 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	c0 = clock_seconds();
 	if (collide_check(&st->col, st->step, h, st->y, st->y_next, &cerr) != 0)
 		return collisions_failed(st, f, &cerr);
+	if (st->in.kind == INTEG_BDF2)
+		bdf2_correct_energy(&st->bd, st->y_next);
 	c0 = clock_seconds() - c0;
 	/* 4. blow-up check before anything is committed */
 	if ((bad = find_blowup(st, st->y_next, f->why, sizeof f->why)) >= 0 ||

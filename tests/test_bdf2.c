@@ -16,10 +16,11 @@
 	"modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n" \
 	"bending_weft = 2 uN*m\n" extra
 
-/* BDF2 integrates a constant acceleration exactly from an exact history;
- * its first step, backward Euler, puts the cloth g h^2 / 2 low, an error
- * that BDF2's recurrence carries to 3/2 of it: x = x0 + v0 t + g t^2 / 2 +
- * 3 g h^2 / 4 from the second step on, v = v0 + g t. */
+/* BDF2 integrates a constant acceleration exactly from an exact history,
+ * and its first step takes the history of the parabola through the start
+ * (bdf2.c start_history): x = x0 + v0 t + g t^2 / 2, v = v0 + g t.
+ * Backward Euler's first step would leave the cloth 3 g h^2 / 4 = 0.7 mm
+ * low, well over the bound. */
 static void
 free_fall_bdf2(void **state)
 {
@@ -38,18 +39,20 @@ free_fall_bdf2(void **state)
 	for (p = 0; p < cloth_of(st)->n; p++) {
 		vec3 x0 = v3_load(cloth_of(st)->x0 + 3 * p), v0 = v3_load(sc.velocity);
 		vec3 g = v3_load(sc.gravity);
-		vec3 exact = v3_madd(v3_madd(x0, v0, t), g, t * t / 2 + 0.75 * h * h);
+		vec3 exact = v3_madd(v3_madd(x0, v0, t), g, t * t / 2);
 
 		worst = fmax(worst, v3_len(v3_sub(v3_load(stepper_x(st) + 3 * p), exact)));
 		worst_v = fmax(worst_v, v3_len(v3_sub(v3_load(stepper_v(st) + 3 * p),
 		    v3_madd(v0, g, t))));
 	}
-	print_message("bdf2 free fall over %g s: %.3g m from x0 + v0 t + g t^2/2 + 3 g h^2/4, "
-	    "%.3g m/s from v0 + g t\n", t, worst, worst_v);
-	/* to the Newton iterations' tolerance (1e-4 m/s, bdf2.c), which a
-	 * linear system meets by a hundred times at its last iteration */
-	assert_true(worst < 1e-6);
-	assert_true(worst_v < 1e-5);
+	print_message("bdf2 free fall over %g s (h %g s): %.3g m from x0 + v0 t + g t^2/2, "
+	    "%.3g m/s from v0 + g t\n", t, h, worst, worst_v);
+	/* to the Newton iterations' tolerance (bdf2.c NEWTON_REL: a step is
+	 * done when the next would move no node by 1 % of the step's largest
+	 * motion, and that last one is taken, its conjugate gradients to 1 %:
+	 * some 1e-4 of the step's motion left in each step) */
+	assert_true(worst < 1e-4);
+	assert_true(worst_v < 1e-3);
 	stepper_free(st);
 	scene_free(&sc);
 }
@@ -102,7 +105,9 @@ resume_needs_history(void **state)
 	scene_free(&sc);
 }
 
-/* A cloth dropped 2 cm onto a plane: it lands and lies still on it, no
+/* A cloth dropped 2 cm onto a plane (damped as the shipped scenes are:
+ * undamped, its vibrations would go on, as RK4's do, BDF2 giving back
+ * what it damps): it lands and lies still on it, no
  * node under it, the contacts of each step with the plane recorded as
  * events of the obstacle with their impulse (the normal velocity they
  * took away). */
@@ -117,7 +122,7 @@ lands_and_rests(void **state)
 	int p;
 
 	(void)state;
-	parse_text(&sc, FLAT("[plane]\npoint = 0 0 0 m\n"));
+	parse_text(&sc, FLAT("damping = 2 /s\n[plane]\npoint = 0 0 0 m\n"));
 	st = new_stepper(&sc);
 	while (!stepper_done(st)) {
 		struct stepper_report r;

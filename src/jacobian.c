@@ -227,6 +227,25 @@ jacobian_block_diag(const struct jacobian *jc, double ck, double cc, double *blo
 	}
 }
 
+/* b1 += a c^T, and b2 += c a^T unless NULL (3 x 3 row-major blocks),
+ * written out: the assembly's inner loop, which at -O2 was mostly loop. */
+static inline void
+add_outer_block(double *b1, double *b2, const double *a, const double *c)
+{
+	double v0 = a[0] * c[0], v1 = a[0] * c[1], v2 = a[0] * c[2];
+	double v3 = a[1] * c[0], v4 = a[1] * c[1], v5 = a[1] * c[2];
+	double v6 = a[2] * c[0], v7 = a[2] * c[1], v8 = a[2] * c[2];
+
+	b1[0] += v0; b1[1] += v1; b1[2] += v2;
+	b1[3] += v3; b1[4] += v4; b1[5] += v5;
+	b1[6] += v6; b1[7] += v7; b1[8] += v8;
+	if (b2 == NULL)
+		return;
+	b2[0] += v0; b2[1] += v3; b2[2] += v6;
+	b2[3] += v1; b2[4] += v4; b2[5] += v7;
+	b2[6] += v2; b2[7] += v5; b2[8] += v8;
+}
+
 /* A hinge's d kb / dx as 3 rows of 9 (nodes a, b, c, 3 columns each),
  * from hinge_dkb's formula written out: node a's columns are
  * (2 [e2]x + kb e2^T) / D, node c's (2 [e1]x - kb e1^T) / D ([v]x the
@@ -271,7 +290,7 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 	const struct cloth *cl = jc->fo->cl;
 	double beta = cc * jc->fo->spring_damping;
 	size_t s;
-	int i, j, m, l;
+	int i, m, l;
 
 	for (s = 0; s < cl->nsprings; s++) {
 		const struct spring *sp = &cl->springs[s];
@@ -295,20 +314,14 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 		const int *slot = A->corner_slot + 9 * s;
 
 		/* k g_m g_l^T: the upper blocks, mirrored */
-		for (m = 0; m < 3; m++)
-			for (l = m; l < 3; l++) {
-				double *b1 = A->val + 9 * (size_t)slot[3 * m + l];
-				double *b2 = A->val + 9 * (size_t)slot[3 * l + m];
+		for (m = 0; m < 3; m++) {
+			double a[3] = { kc * g[m][0], kc * g[m][1], kc * g[m][2] };
 
-				for (i = 0; i < 3; i++)
-					for (j = 0; j < 3; j++) {
-						double v = kc * g[m][i] * g[l][j];
-
-						b1[3 * i + j] += v;
-						if (l != m)
-							b2[3 * j + i] += v;
-					}
-			}
+			add_outer_block(A->val + 9 * (size_t)slot[4 * m], NULL, a, g[m]);
+			for (l = m + 1; l < 3; l++)
+				add_outer_block(A->val + 9 * (size_t)slot[3 * m + l],
+				    A->val + 9 * (size_t)slot[3 * l + m], a, g[l]);
+		}
 	}
 	for (s = 0; s < cl->nhinges; s++) {
 		const double *e = jc->hinge + 10 * s;
@@ -316,22 +329,19 @@ jacobian_assemble(const struct jacobian *jc, double ck, double cc, struct blockm
 		double kh = ck * cl->hinges[s].k, J[3][9], id = e[9];
 
 		hinge_jacobian(e, id, J);
-		/* k J_m^T J_l, the upper blocks mirrored */
+		/* k J_m^T J_l = k sum over J's rows r of J_rm J_rl^T, the upper
+		 * blocks mirrored */
 		for (m = 0; m < 3; m++)
 			for (l = m; l < 3; l++) {
 				double *b1 = A->val + 9 * (size_t)slot[3 * m + l];
-				double *b2 = A->val + 9 * (size_t)slot[3 * l + m];
+				double *b2 = l == m ? NULL : A->val + 9 * (size_t)slot[3 * l + m];
+				int r;
 
-				for (i = 0; i < 3; i++)
-					for (j = 0; j < 3; j++) {
-						double v = kh * (J[0][3 * m + i] * J[0][3 * l + j] +
-						    J[1][3 * m + i] * J[1][3 * l + j] +
-						    J[2][3 * m + i] * J[2][3 * l + j]);
+				for (r = 0; r < 3; r++) {
+					double a[3] = { kh * J[r][3 * m], kh * J[r][3 * m + 1], kh * J[r][3 * m + 2] };
 
-						b1[3 * i + j] += v;
-						if (l != m)
-							b2[3 * j + i] += v;
-					}
+					add_outer_block(b1, b2, a, J[r] + 3 * l);
+				}
 			}
 	}
 }

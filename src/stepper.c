@@ -146,8 +146,9 @@ choose_dt(struct stepper *st, double vscale, struct drape_err *err)
 	    sc->mat.spring_damping, st->net.cl.h / vscale) : sc->dt;
 	st->dt = st->dt_set;
 	if (!(st->dt > 0) || !isfinite(st->dt)) {
-		err_set(err, "%s: cannot choose a time step (the stiffness bound is %g rad/s); "
-		    "set dt in [simulation]", sc->path, st->omega);
+		err_set(err, "%s:%d: dt%s: cannot choose a time step (the stiffness bound is %g "
+		    "rad/s); expected a dt in [simulation]", sc->path, sc->dt_line,
+		    st->dt_auto ? " = auto" : "", st->omega);
 		return -1;
 	}
 	if (scene_steps(sc->duration, st->dt_set) > SCENE_MAX_STEPS) {

@@ -732,6 +732,91 @@ outputs_onto_devices_and_fifos(void **state)
 	assert_true(S_ISCHR(sb.st_mode));
 }
 
+/* ---- issue 29 ---- */
+
+/* Issue 29, 6: a scene file up to 16,777,216 bytes is read (the reader
+ * grew its buffer past the bound 4096 bytes early: 16,773,121 bytes were
+ * refused); one byte more is not. The padding is a comment. */
+static void
+scene_of_the_largest_size(void **state)
+{
+	static const long sizes[] = { 16773121, 16777216, 16777217 };
+	struct result r;
+	char args[800], path[700];
+	size_t k, head = strlen(SIM CLOTH);
+	char *text;
+
+	(void)state;
+	for (k = 0; k < 3; k++) {
+		size_t n = (size_t)sizes[k];
+
+		assert_non_null(text = malloc(n));
+		memcpy(text, SIM CLOTH, head);
+		text[head] = '#';
+		memset(text + head + 1, 'x', n - head - 2);
+		text[n - 1] = '\n';
+		snprintf(path, sizeof path, "%s", dir_write("big.scene", text, n));
+		free(text);
+		snprintf(args, sizeof args, "run --headless --summary csv '%s'", path);
+		drape(&r, args);
+		if (sizes[k] <= 16777216 && r.status != 0)
+			fail_msg("%ld bytes: status %d, %s", sizes[k], r.status, r.err);
+		if (sizes[k] > 16777216)
+			expect(&r, 2, "big.scene:1: ", "expected a scene of at most 16777216 bytes");
+	}
+	remove(path);
+}
+
+/* Issue 29, 5: a value finite as written and not once in SI units is
+ * refused at its line, and so is a plane normal whose direction is lost
+ * in subnormal numbers; the reasons are said once. */
+static void
+values_past_their_unit(void **state)
+{
+	struct result r;
+
+	(void)state;
+	drape_on(&r, "run --headless '%s'", "gpa.scene", SIM "[cloth]\nnodes = 4 4\n"
+	    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "modulus_warp = 1e308 GPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
+	    "bending_warp = 0\nbending_weft = 0\n");
+	expect(&r, 2, "gpa.scene:8: ", "modulus_warp: expected a modulus (Pa, kPa, MPa, GPa), "
+	    "got '1e308 GPa' (1e+308 GPa is past the largest number in Pa)");
+	drape_on(&r, "run --headless --set 'cloth.shear_modulus=1e306 GPa' '%s'", "ok.scene",
+	    SIM CLOTH);
+	expect(&r, 2, "--set cloth.shear_modulus=1e306 GPa: ", "(1e+306 GPa is past the largest "
+	    "number in Pa)");
+	/* finite values whose stiffness is not: no step, said at a line */
+	drape_on(&r, "run --headless --set 'cloth.bending_warp=1e307 mN*m' '%s'", "ok.scene",
+	    SIM CLOTH);
+	expect(&r, 2, "ok.scene:1: dt = auto: ", "cannot choose a time step (the stiffness bound "
+	    "is inf rad/s)");
+	drape_on(&r, "run --headless '%s'", "normal.scene", SIM CLOTH "[plane]\n"
+	    "point = 0 -1 0\nnormal = 0 1e-310 0\n");
+	expect(&r, 2, "normal.scene:15: ", "normal: expected a direction, a vector with a "
+	    "component of at least 2.22507e-308 either way, got '0 1e-310 0'");
+	/* the smallest normal number is a direction */
+	drape_on(&r, "run --headless '%s'", "normal.scene", SIM CLOTH "[plane]\n"
+	    "point = 0 -1 0\nnormal = 0 2.3e-308 0\n");
+	if (r.status != 0)
+		fail_msg("status %d: %s", r.status, r.err);
+	/* issue 29, 12: "expected a number" once, the reason in parentheses */
+	drape_on(&r, "run --headless '%s'", "nan.scene", "[simulation]\nduration = 1\n"
+	    "tolerance = abc\n" CLOTH);
+	expect(&r, 2, "nan.scene:3: ", "tolerance: expected a number, got 'abc'\n");
+	drape_on(&r, "run --headless '%s'", "nan.scene", "[simulation]\nduration = 1\n"
+	    "tolerance = 1 2\n" CLOTH);
+	expect(&r, 2, "nan.scene:3: ", "tolerance: expected a number, got '1 2' (more than 1 "
+	    "number)\n");
+	drape_on(&r, "run --headless '%s'", "comma.scene", SIM "[cloth]\nnodes = 4 4\n"
+	    "spacing = 1,5 mm\n");
+	expect(&r, 2, "comma.scene:5: ", "spacing: expected a length (m, cm, mm, um), got "
+	    "'1,5 mm'\n");
+	drape_on(&r, "run --headless '%s'", "origin.scene", SIM CLOTH "origin = 1 2\n");
+	expect(&r, 2, "origin.scene:13: ", "origin: expected numbers for a length (m, cm, mm, "
+	    "um), got '1 2' (2 of the 3 numbers)\n");
+}
+
 struct stages {
 	char seen[200];
 };
@@ -783,6 +868,8 @@ main(void)
 		cmocka_unit_test(setup_progress_on_a_terminal),
 		cmocka_unit_test(setup_stages),
 		cmocka_unit_test(outputs_onto_devices_and_fifos),
+		cmocka_unit_test(scene_of_the_largest_size),
+		cmocka_unit_test(values_past_their_unit),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

@@ -38,6 +38,11 @@ int cmd_step_failed(const char *cmd, const char *path, const struct step_failure
  * unknown or lacked its value, then the usage; returns EXIT_USAGE. */
 int cmd_option_error(const char *cmd, char **argv);
 
+/* s as a whole number from lo to hi: decimal digits with an optional sign
+ * and nothing after them, within long's range (strtol's errno) and the
+ * bounds. 0 with *out set, or -1 (*out unchanged). */
+int cmd_parse_long(const char *s, long lo, long hi, long *out);
+
 /* stepper_new, showing the stages of the setup on the standard error
  * when it is a terminal and the cloth has CMD_SETUP_SHOWN_NODES nodes or
  * more (the line is cleared when setup ends). */

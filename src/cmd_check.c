@@ -82,7 +82,7 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 			worst_pairs = r.pairs > worst_pairs ? r.pairs : worst_pairs;
 			worst_inside = r.inside > worst_inside ? r.inside : worst_inside;
 			k++;
-			next = (double)(k * every) * frame;
+			next = (double)k * (double)every * frame;
 		}
 		if (stepper_done(st))
 			break;
@@ -111,17 +111,16 @@ check_options(int argc, char **argv, long *every, const char **sets, size_t *nse
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
-	char *end;
 	int ch, i;
 
 	optind = 1;
 	while ((ch = getopt_long(argc, argv, "e:h", longopts, NULL)) != -1) {
 		switch (ch) {
 		case 'e':
-			*every = strtol(optarg, &end, 10);
-			if (*optarg == '\0' || *end != '\0' || *every < 1) {
+			/* past SCENE_MAX_FRAMES it is every frame's first alone */
+			if (cmd_parse_long(optarg, 1, (long)SCENE_MAX_FRAMES, every) != 0) {
 				fprintf(stderr, "drape check: --every '%s': expected a whole number "
-				    "of 1 or more\n", optarg);
+				    "from 1 to %ld\n", optarg, (long)SCENE_MAX_FRAMES);
 				return EXIT_USAGE;
 			}
 			break;

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <math.h>
 #include <getopt.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -97,7 +98,7 @@ bad_option(const char *opt, const char *val, const char *what)
 static int
 take_option(struct run_opts *o, int c, const char *arg)
 {
-	char why[200], *end;
+	char why[200];
 	enum integrator_kind k;
 
 	switch (c) {
@@ -149,10 +150,9 @@ take_option(struct run_opts *o, int c, const char *arg)
 			return bad_option("--dt", arg, "'auto' or a time greater than 0");
 		break;
 	case 'k':
-		errno = 0;
-		o->keyframe_every = strtol(arg, &end, 10);
-		if (errno != 0 || end == arg || *end != '\0' || o->keyframe_every < 1)
-			return bad_option("--keyframe-every", arg, "a whole number of steps from 1");
+		if (cmd_parse_long(arg, 1, (long)SCENE_MAX_STEPS, &o->keyframe_every) != 0)
+			return bad_option("--keyframe-every", arg, "a whole number of steps from 1 "
+			    "to 1000000000");
 		break;
 	case 'E':
 		if (strcmp(arg, "stored") == 0 || strcmp(arg, "digest") == 0)
@@ -241,18 +241,11 @@ static int
 parse_resume(const char *arg, char **file, long *step)
 {
 	const char *at = strrchr(arg, '@');
-	char *end;
 	size_t len = strlen(arg);
 
 	*step = -1;
-	if (at != NULL && at[1] != '\0') {
-		errno = 0;
-		*step = strtol(at + 1, &end, 10);
-		if (errno == 0 && *end == '\0' && *step >= 0)
-			len = (size_t)(at - arg);
-		else
-			*step = -1;
-	}
+	if (at != NULL && cmd_parse_long(at + 1, 0, LONG_MAX, step) == 0)
+		len = (size_t)(at - arg);
 	if ((*file = malloc(len + 1)) == NULL)
 		return -1;
 	memcpy(*file, arg, len);

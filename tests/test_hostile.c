@@ -817,6 +817,58 @@ values_past_their_unit(void **state)
 	    "um), got '1 2' (2 of the 3 numbers)\n");
 }
 
+/* Issue 29, 7: every integer option is read with its range: --every at
+ * LONG_MAX overflowed k * every (UBSan), --size through sscanf's %d (its
+ * overflow undefined), --step past a long was LONG_MAX. */
+static void
+integer_options_in_range(void **state)
+{
+	static const struct {
+		const char *args, *what;
+	} bad[] = {
+		{ "check --every 9223372036854775807 '%s'",
+		  "drape check: --every '9223372036854775807': expected a whole number from 1 to "
+		  "1000000000" },
+		{ "check --every 99999999999999999999 '%s'", "expected a whole number from 1 to" },
+		{ "check --every ' 5' '%s'", "expected a whole number from 1 to" },
+		{ "run --headless --keyframe-every 9223372036854775808 '%s'",
+		  "--keyframe-every '9223372036854775808': expected a whole number of steps from 1 "
+		  "to 1000000000" },
+		{ "snapshot --size 99999999999x3 '%s'", "--size '99999999999x3': expected WxH" },
+		{ "snapshot --size 80x24x '%s'", "--size '80x24x': expected WxH" },
+		{ "snapshot --step 99999999999999999999 '%s'", "--step '99999999999999999999': "
+		  "expected a whole number from 0" },
+		{ "snapshot --png x.png --frames 9223372036854775807 '%s'", "--frames" },
+	};
+	struct result r;
+	char args[1200];
+	const char *scene = dir_write_text("int.scene", SIM CLOTH);
+	size_t k;
+
+	(void)state;
+	for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+		snprintf(args, sizeof args, bad[k].args, scene);
+		drape(&r, args);
+		expect(&r, 2, NULL, bad[k].what);
+		assert_string_equal(r.out, "");
+	}
+	/* the largest --every audits the first frame and the last */
+	snprintf(args, sizeof args, "check --every 1000000000 '%s'", scene);
+	drape(&r, args);
+	if (r.status != 0)
+		fail_msg("status %d: %s", r.status, r.err);
+	assert_non_null(strstr(r.out, "\tscene\t2\t0\t0\t0\n"));
+	snprintf(args, sizeof args, "run --headless --record '%s/int.drr' '%s'", dir, scene);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	snprintf(args, sizeof args, "events --from 99999999999999999999 '%s/int.drr'", dir);
+	drape(&r, args);
+	expect(&r, 2, NULL, "--from '99999999999999999999': expected a step number from 0");
+	snprintf(args, sizeof args, "events --node 2147483648 '%s/int.drr'", dir);
+	drape(&r, args);
+	expect(&r, 2, NULL, "--node '2147483648': expected a node number from 0");
+}
+
 struct stages {
 	char seen[200];
 };
@@ -870,6 +922,7 @@ main(void)
 		cmocka_unit_test(outputs_onto_devices_and_fifos),
 		cmocka_unit_test(scene_of_the_largest_size),
 		cmocka_unit_test(values_past_their_unit),
+		cmocka_unit_test(integer_options_in_range),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

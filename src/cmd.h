@@ -2,6 +2,7 @@
 #ifndef DRAPE_CMD_H
 #define DRAPE_CMD_H
 
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "scene.h"
@@ -49,10 +50,13 @@ int cmd_parse_long(const char *s, long lo, long hi, long *out);
 #define CMD_SETUP_SHOWN_NODES (1L << 18)
 struct stepper *cmd_stepper_new(const struct scene *sc, struct drape_err *err);
 
-/* The run length that --until T (> 0 when given) and --dt DT (> 0 when
- * given) make of the scene: at most SCENE_MAX_STEPS steps and
- * SCENE_MAX_FRAMES frames. EXIT_OK, or EXIT_USAGE after saying which
- * option is out of range. */
-int cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt);
+/* The run length that --until T (> 0 when given) and a step make of the
+ * scene: at most SCENE_MAX_STEPS steps and SCENE_MAX_FRAMES frames. The
+ * step is --dt DT when dt_given (DT > 0; 0 or less: the scene's), else dt
+ * is a step the user did not give (a replay's recorded one, > 0) or 0 for
+ * the scene's. EXIT_OK, or EXIT_USAGE after saying which option is out
+ * of range. */
+int cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt,
+    bool dt_given);
 
 #endif

@@ -280,7 +280,7 @@ open_resumed(const struct run_opts *o, const char *file, long step, struct scene
 	}
 	if (replay_scene(&rp, file, o->until, sc, &err) != 0) {
 		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
-	} else if (cmd_check_run_length("run", sc, o->until, rp.meta.dt_set) != EXIT_OK) {
+	} else if (cmd_check_run_length("run", sc, o->until, rp.meta.dt_set, false) != EXIT_OK) {
 		scene_free(sc);
 	} else if ((*st = replay_resume(&rp, file, sc, step, &err)) == NULL) {
 		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
@@ -341,7 +341,7 @@ open_scene(const struct run_opts *o, struct scene *sc, struct stepper **st)
 		fprintf(stderr, "drape: %s\n", err.msg);
 		return EXIT_USAGE;
 	}
-	if (cmd_check_run_length("run", sc, o->until, o->dt) != EXIT_OK) {
+	if (cmd_check_run_length("run", sc, o->until, o->dt, true) != EXIT_OK) {
 		scene_free(sc);
 		return EXIT_USAGE;
 	}

@@ -869,6 +869,53 @@ integer_options_in_range(void **state)
 	expect(&r, 2, NULL, "--node '2147483648': expected a node number from 0");
 }
 
+/* Issue 29, 12: messages say what was given: a --set with a newline at
+ * its end is the option's fault, not the scene line it would have cut; a
+ * replay with no intact keyframe does not speak of "step -1"; --until on
+ * a resumed run is not blamed on a --dt the user did not give. */
+static void
+messages_name_what_was_given(void **state)
+{
+	struct result r;
+	char args[2000], path[700];
+	unsigned char *buf;
+	uint64_t off[8];
+	size_t len, n, k;
+
+	(void)state;
+	drape_on(&r, "run --headless --set 'cloth.weight=100 g/m2\n' '%s'", "nl.scene", SIM CLOTH);
+	expect(&r, 2, "drape: --set cloth.weight=100 g/m2\\n: ", "expected SECTION.KEY=VALUE on "
+	    "one line, without control characters (found one at byte 22)");
+	assert_null(strstr(r.err, "nl.scene:"));
+	drape_on(&r, "check --set 'cloth.spacing=1\tcm\r' '%s'", "nl.scene", SIM CLOTH);
+	expect(&r, 2, "drape check: --set cloth.spacing=1\tcm\\r: ", "without control characters");
+
+	snprintf(args, sizeof args, "run --headless --record '%s/keys.drr' '%%s'", dir);
+	drape_on(&r, args, "keys.scene", SIM CLOTH);
+	assert_int_equal(r.status, 0);
+	snprintf(path, sizeof path, "%s/keys.drr", dir);
+	buf = read_whole(path, &len);
+	n = chunk_offsets(buf, len, REPLAY_KEYFRAME, off, 8);
+	assert_true(n >= 2);
+	for (k = 0; k < n; k++)	/* a payload byte: the CRC fails */
+		buf[off[k] + sizeof(struct replay_chunk_header) + 1] ^= 0xff;
+	dir_write("nokey.drr", buf, len);
+	free(buf);
+	snprintf(args, sizeof args, "run --resume '%s/nokey.drr'", dir);
+	drape(&r, args);
+	expect(&r, 2, "nokey.drr: ", "no intact keyframe\n");
+	assert_null(strstr(r.err, "step -1"));
+	snprintf(args, sizeof args, "run --resume '%s/nokey.drr@5'", dir);
+	drape(&r, args);
+	expect(&r, 2, "nokey.drr: ", "no intact keyframe at or before step 5\n");
+
+	snprintf(args, sizeof args, "run --resume '%s' --until 1e6", path);
+	drape(&r, args);
+	expect(&r, 2, "drape run: --until 1e+06 s: ", "expected at most 1e+09 steps of "
+	    "9.12871e-05 s, the recorded step (it takes 1.1e+10)");
+	assert_null(strstr(r.err, "--dt"));
+}
+
 struct stages {
 	char seen[200];
 };
@@ -923,6 +970,7 @@ main(void)
 		cmocka_unit_test(scene_of_the_largest_size),
 		cmocka_unit_test(values_past_their_unit),
 		cmocka_unit_test(integer_options_in_range),
+		cmocka_unit_test(messages_name_what_was_given),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

@@ -44,6 +44,22 @@ int cmd_option_error(const char *cmd, char **argv);
  * bounds. 0 with *out set, or -1 (*out unchanged). */
 int cmd_parse_long(const char *s, long lo, long hi, long *out);
 
+/* An output named by option opt (out NULL: not given) that is the same
+ * file as an input (outfile_same) would destroy it: EXIT_USAGE after
+ * saying "drape CMD: OPT 'OUT' would overwrite WHAT: expected another
+ * file", else EXIT_OK. what names the input ("the replay being
+ * exported"). */
+int cmd_output_spares(const char *cmd, const char *opt, const char *out, const char *in,
+    const char *what);
+/* The same against what a scene reads: its file (when scene_file: a
+ * resumed run's scene is the replay's text) and its meshes' OBJ files. */
+int cmd_output_spares_scene(const char *cmd, const char *opt, const char *out,
+    const struct scene *sc, bool scene_file);
+/* An output opt that a format writes by seeking back (replays, PC2) and
+ * that cannot be (outfile_unseekable): EXIT_USAGE after saying so, else
+ * EXIT_OK. */
+int cmd_output_seeks(const char *cmd, const char *opt, const char *out);
+
 /* stepper_new, showing the stages of the setup on the standard error
  * when it is a terminal and the cloth has CMD_SETUP_SHOWN_NODES nodes or
  * more (the line is cleared when setup ends). */

@@ -11,6 +11,7 @@
 
 #include "cmd.h"
 #include "obj.h"
+#include "outfile.h"
 #include "pc2.h"
 #include "replay.h"
 
@@ -34,13 +35,15 @@ write_obj_frame(const char *path, const float *x, const struct replay_meta *m,
 	return rc;
 }
 
-/* An exit status: EXIT_USAGE when the replay holds no frame that can be
- * exported (none intact, a chunk that passes its CRC but does not decode,
- * a frame time out of range), EXIT_RUNTIME when an output cannot be
- * written; what was being written is then removed. */
+/* The frames of replay r (read from in) into the outputs. An exit status:
+ * EXIT_USAGE when the replay holds no frame that can be exported (none
+ * intact, a chunk that passes its CRC but does not decode, a frame time
+ * out of range) or a frame of --obj-seq would overwrite in, EXIT_RUNTIME
+ * when an output cannot be written; what was being written is then
+ * removed. */
 static int
-export(const struct replay *r, const char *pc2, const char *obj, const char *seq,
-    struct drape_err *err)
+export(const struct replay *r, const char *in, const char *pc2, const char *obj,
+    const char *seq, struct drape_err *err)
 {
 	struct pc2_writer pw;
 	struct replay_frames fr;
@@ -83,6 +86,12 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 				if ((size_t)snprintf(path, sizeof path, "%s/frame_%05zu.obj", seq, frame) >=
 				    sizeof path) {
 					err_set(err, "%s: path too long", seq);
+					goto fail_fr;
+				}
+				if (outfile_same(path, in)) {
+					err_set(err, "--obj-seq %s would overwrite it: expected another "
+					    "directory", path);
+					rc = EXIT_USAGE;
 					goto fail_fr;
 				}
 				if (write_obj_frame(path, x, m, err) != 0)
@@ -154,6 +163,13 @@ cmd_export(int argc, char **argv)
 		    "--obj-seq DIR\n");
 		return EXIT_USAGE;
 	}
+	/* before anything is written */
+	if (cmd_output_seeks("export", "--pc2", pc2) != EXIT_OK ||
+	    cmd_output_spares("export", "--pc2", pc2, argv[optind], "the replay being exported") !=
+	    EXIT_OK ||
+	    cmd_output_spares("export", "--obj", obj, argv[optind], "the replay being exported") !=
+	    EXIT_OK)
+		return EXIT_USAGE;
 	if (seq != NULL && mkdir(seq, 0777) != 0 && errno != EEXIST) {
 		fprintf(stderr, "drape export: %s: cannot create: %s\n", seq, strerror(errno));
 		return EXIT_RUNTIME;
@@ -165,7 +181,7 @@ cmd_export(int argc, char **argv)
 	if (r.cut || r.nbad > 0)
 		fprintf(stderr, "drape export: %s: %s; exporting the %zu intact frames\n",
 		    argv[optind], r.cut ? "cut short" : "some chunks have a bad CRC", r.nframes);
-	if ((rc = export(&r, pc2, obj, seq, &err)) != EXIT_OK)
+	if ((rc = export(&r, argv[optind], pc2, obj, seq, &err)) != EXIT_OK)
 		fprintf(stderr, "drape export: %s: %s\n", argv[optind], err.msg);
 	replay_close(&r);
 	return rc;

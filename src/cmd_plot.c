@@ -286,6 +286,8 @@ cmd_plot(int argc, char **argv)
 		return EXIT_USAGE;
 	}
 	path = argv[optind];
+	if (cmd_output_spares("plot", "--png", png, path, "the replay being plotted") != EXIT_OK)
+		return EXIT_USAGE;
 	if (!find_gnuplot(prog, sizeof prog)) {
 		fprintf(stderr, "drape plot: gnuplot not found (%s): drape plot draws its charts "
 		    "with it (on Debian: apt-get install gnuplot-nox)\n",

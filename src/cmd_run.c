@@ -218,6 +218,10 @@ parse_options(int argc, char **argv, struct run_opts *o)
 		if ((rc = take_option(o, c, optarg)) != EXIT_OK)
 			return rc;
 	}
+	/* before anything is read or run: a FIFO would block, then get a
+	 * replay with no header */
+	if (cmd_output_seeks("run", "--record", o->record) != EXIT_OK)
+		return EXIT_USAGE;
 	if (o->resume == NULL) {
 		if (optind != argc - 1) {
 			fprintf(stderr, "drape run: expected one scene file\n");
@@ -251,16 +255,6 @@ parse_resume(const char *arg, char **file, long *step)
 	memcpy(*file, arg, len);
 	(*file)[len] = '\0';
 	return 0;
-}
-
-/* 1 if both paths name one existing file. */
-static int
-same_file(const char *a, const char *b)
-{
-	struct stat sa, sb;
-
-	return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-	    sa.st_ino == sb.st_ino;
 }
 
 /* The scene and options of a replay, and the run at its last keyframe at
@@ -302,6 +296,31 @@ open_resumed(const struct run_opts *o, const char *file, long step, struct scene
 	return rc;
 }
 
+/* The outputs against one input, said as what (cmd_output_spares). */
+static int
+outputs_spare(const struct run_opts *o, const char *in, const char *what)
+{
+	if (cmd_output_spares("run", "--record", o->record, in, what) != EXIT_OK ||
+	    cmd_output_spares("run", "--final-obj", o->final_obj, in, what) != EXIT_OK ||
+	    cmd_output_spares("run", "--trace", o->trace, in, what) != EXIT_OK)
+		return EXIT_USAGE;
+	return EXIT_OK;
+}
+
+/* The outputs against what the scene reads (a resumed run's scene is the
+ * replay's text: its file is not read). */
+static int
+outputs_spare_scene(const struct run_opts *o, const struct scene *sc)
+{
+	bool file = o->resume == NULL;
+
+	if (cmd_output_spares_scene("run", "--record", o->record, sc, file) != EXIT_OK ||
+	    cmd_output_spares_scene("run", "--final-obj", o->final_obj, sc, file) != EXIT_OK ||
+	    cmd_output_spares_scene("run", "--trace", o->trace, sc, file) != EXIT_OK)
+		return EXIT_USAGE;
+	return EXIT_OK;
+}
+
 /* --resume: its own checks on the options, then open_resumed. */
 static int
 resume(struct run_opts *o, struct scene *sc, struct stepper **st)
@@ -319,9 +338,7 @@ resume(struct run_opts *o, struct scene *sc, struct stepper **st)
 		fprintf(stderr, "drape run: out of memory\n");
 		return EXIT_RUNTIME;
 	}
-	if (o->record != NULL && same_file(file, o->record)) {
-		fprintf(stderr, "drape run: --record '%s' would overwrite the replay being resumed: "
-		    "expected another file\n", o->record);
+	if (outputs_spare(o, file, "the replay being resumed") != EXIT_OK) {
 		free(file);
 		return EXIT_USAGE;
 	}
@@ -672,6 +689,13 @@ cmd_run(int argc, char **argv)
 	if (rc != EXIT_OK) {
 		free(o.sets);
 		return rc;
+	}
+	/* an output over an input: refused before anything is written */
+	if (outputs_spare_scene(&o, &sc) != EXIT_OK) {
+		stepper_free(st);
+		scene_free(&sc);
+		free(o.sets);
+		return EXIT_USAGE;
 	}
 	if (!o.headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
 		fprintf(stderr, "drape: not a terminal: running headless\n");

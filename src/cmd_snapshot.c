@@ -508,6 +508,12 @@ snapshot_png(struct snapshot *sn)
 
 	if ((rc = check_writable(sn->png)) != EXIT_OK)
 		return rc;
+	/* the input, and for a scene its meshes: a picture over them would
+	 * destroy them */
+	if (cmd_output_spares("snapshot", "--png", sn->png, sn->path, sn->replay ? "the replay" :
+	    "the scene") != EXIT_OK || (!sn->replay && cmd_output_spares_scene("snapshot", "--png",
+	    sn->png, &sn->sc, false) != EXIT_OK))
+		return EXIT_USAGE;
 	if (sn->ntargets == 0 && (rc = add_target(sn, false, 0, 0)) != EXIT_OK)
 		return rc;
 	qsort(sn->targets, sn->ntargets, sizeof *sn->targets, target_order);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "cmd.h"
+#include "outfile.h"
 #include "stepper.h"
 
 int
@@ -34,4 +35,45 @@ cmd_parse_long(const char *s, long lo, long hi, long *out)
 		return -1;
 	*out = v;
 	return 0;
+}
+
+int
+cmd_output_spares(const char *cmd, const char *opt, const char *out, const char *in,
+    const char *what)
+{
+	if (out == NULL || in == NULL || !outfile_same(out, in))
+		return EXIT_OK;
+	fprintf(stderr, "drape %s: %s '%s' would overwrite %s: expected another file\n", cmd,
+	    opt, out, what);
+	return EXIT_USAGE;
+}
+
+int
+cmd_output_spares_scene(const char *cmd, const char *opt, const char *out,
+    const struct scene *sc, bool scene_file)
+{
+	char what[64];
+	size_t i;
+
+	if (scene_file && cmd_output_spares(cmd, opt, out, sc->path, "the scene") != EXIT_OK)
+		return EXIT_USAGE;
+	for (i = 0; i < sc->nobstacles; i++) {
+		snprintf(what, sizeof what, "the mesh of [mesh] at line %d", sc->obstacles[i].line);
+		if (cmd_output_spares(cmd, opt, out, sc->obstacles[i].file, what) != EXIT_OK)
+			return EXIT_USAGE;
+	}
+	return EXIT_OK;
+}
+
+int
+cmd_output_seeks(const char *cmd, const char *opt, const char *out)
+{
+	const char *what = out != NULL ? outfile_unseekable(out) : NULL;
+
+	if (what == NULL)
+		return EXIT_OK;
+	fprintf(stderr, "drape %s: %s '%s' is %s, which cannot be written in this format: it "
+	    "goes back to the file's start at the end; expected a regular file\n", cmd, opt, out,
+	    what);
+	return EXIT_USAGE;
 }

@@ -1,6 +1,7 @@
 /* obstacle.c: signed distances, bounds and checks of the obstacles. */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "obstacle.h"
 
@@ -398,4 +399,6 @@ void
 obstacle_free(struct obstacle *o)
 {
 	mesh_free(&o->mesh);
+	free(o->file);
+	o->file = NULL;
 }

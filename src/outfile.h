@@ -7,9 +7,26 @@
 #define DRAPE_OUTFILE_H
 
 #include <stdbool.h>
+#include <stdio.h>
 
 /* true if path exists and is not a regular file (a directory counts: the
  * direct write then fails with the reason). */
 bool outfile_is_special(const char *path);
+
+/* true if out and in both name one existing regular file, by device and
+ * inode (another name, a hard link or a symbolic link to it counts):
+ * writing out would destroy in. A device or a FIFO is not stored, so
+ * naming it twice destroys nothing. */
+bool outfile_same(const char *out, const char *in);
+
+/* For the formats that go back to write a header once the rest is
+ * written (replays, PC2): NULL if path can be written so (it is not
+ * there yet, or a regular file or a device), else what it is ("a FIFO",
+ * "a socket"), which is not opened: a FIFO would block until a reader
+ * came, and then give it a file with no header. */
+const char *outfile_unseekable(const char *path);
+
+/* Whether an opened output seeks (a terminal does not). */
+bool outfile_seeks(FILE *f);
 
 #endif

@@ -13,6 +13,7 @@
 
 #include "clock.h"
 #include "frame_codec.h"
+#include "outfile.h"
 #include "replay.h"
 
 #define FRAMES_PER_CHUNK 25	/* half a second at 50 frames/s */
@@ -443,6 +444,7 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
     struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)m->nodes;
+	const char *what;
 
 	memset(w, 0, sizeof *w);
 	w->nodes = m->nodes;
@@ -471,8 +473,19 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	}
 	w->next_key = -1;
 	strcpy(w->path, path);
+	/* the header is written again at the close, at the file's start */
+	if ((what = outfile_unseekable(path)) != NULL) {
+		err_set(err, "%s: %s cannot hold a replay, whose header is written last, at its "
+		    "start; expected a regular file", path, what);
+		goto fail;
+	}
 	if ((w->f = fopen(path, "wb")) == NULL) {
 		err_set(err, "%s: cannot create: %s", path, strerror(errno));
+		goto fail;
+	}
+	if (!outfile_seeks(w->f)) {
+		err_set(err, "%s: cannot seek in it (%s), and a replay's header is written last, "
+		    "at its start; expected a regular file", path, strerror(errno));
 		goto fail;
 	}
 	if (write_header(w, 0, 0, err) != 0)

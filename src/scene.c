@@ -808,7 +808,7 @@ read_mesh(struct pctx *c, const struct group *g, struct obstacle *o)
 		free(path);
 		return fail(c, e->line, "file: %s", merr.msg);
 	}
-	free(path);
+	o->file = path;		/* freed with the obstacle */
 	if (get_numbers(c, g, "scale", DIM_NONE, 1, POSITIVE, 0, &scale) < 0 ||
 	    get_vec(c, g, "offset", 0, &offset) < 0)
 		return -1;

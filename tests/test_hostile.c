@@ -916,6 +916,176 @@ messages_name_what_was_given(void **state)
 	assert_null(strstr(r.err, "--dt"));
 }
 
+/* dir/name's bytes equal to text's (len bytes). */
+static void
+assert_file_is(const char *name, const void *text, size_t len)
+{
+	char path[700];
+	unsigned char *buf;
+	size_t n;
+
+	snprintf(path, sizeof path, "%s/%s", dir, name);
+	buf = read_whole(path, &n);
+	if (n != len || memcmp(buf, text, len) != 0)
+		fail_msg("%s was changed (%zu bytes, was %zu)", name, n, len);
+	free(buf);
+}
+
+/* Issue 29, 1: an output that is the same file as an input (by device
+ * and inode: the same name, a hard link, a symbolic link) is refused,
+ * exit 2, with the input untouched: the scene of a run, its mesh, the
+ * replay of an export, a snapshot, a plot or a resumed run. It was
+ * written over, exit 0. */
+static void
+output_over_an_input(void **state)
+{
+	static const char *const on_scene[] = {
+		"run --headless --record '%s/in.scene' '%s/in.scene'",
+		"run --headless --final-obj '%s/in.scene' '%s/in.scene'",
+		"run --headless --trace '%s/link.scene' '%s/in.scene'",
+		"run --headless --final-obj '%s/sym.scene' '%s/in.scene'",
+		"snapshot --png '%s/in.scene' '%s/in.scene'",
+		"run --headless --final-obj '%s/m.obj' '%s/mesh.scene'",
+		"snapshot --png '%s/m.obj' '%s/mesh.scene'",
+	};
+	static const char *const on_replay[] = {
+		"export --pc2 '%s/in.drr' '%s/in.drr'",
+		"export --obj '%s/in.drr' '%s/in.drr'",
+		"export --obj-seq '%s/seq' '%s/seq/frame_00000.obj'",
+		"snapshot --png '%s/in.drr' '%s/in.drr'",
+		"plot --png '%s/in.drr' '%s/in.drr'",
+		"run --resume '%s/in.drr' --final-obj '%s/in.drr'",
+		"run --resume '%s/in.drr' --trace '%s/in.drr'",
+		"run --resume '%s/in.drr' --final-obj '%s/m.obj'",
+	};
+	static const char scene[] = SIM CLOTH;
+	struct result r;
+	char args[2000], a[700], b[700];
+	unsigned char *drr;
+	size_t k, len;
+
+	(void)state;
+	dir_write_text("in.scene", scene);
+	dir_write_text("m.obj", tri_obj);
+	dir_write_text("mesh.scene", MESH("m.obj") "offset = 0 -1 0\n");
+	snprintf(a, sizeof a, "%s/in.scene", dir);
+	snprintf(b, sizeof b, "%s/link.scene", dir);
+	assert_int_equal(link(a, b), 0);
+	snprintf(b, sizeof b, "%s/sym.scene", dir);
+	assert_int_equal(symlink("in.scene", b), 0);
+	for (k = 0; k < sizeof on_scene / sizeof on_scene[0]; k++) {
+		snprintf(args, sizeof args, on_scene[k], dir, dir);
+		drape(&r, args);
+		expect(&r, 2, NULL, "' would overwrite the ");
+		assert_non_null(strstr(r.err, k >= 5 ? "the mesh of [mesh] at line 13: expected "
+		    "another file" : "the scene: expected another file"));
+		assert_file_is("in.scene", scene, sizeof scene - 1);
+		assert_file_is("m.obj", tri_obj, sizeof tri_obj - 1);
+	}
+	snprintf(args, sizeof args, "run --headless --record '%s/in.drr' '%s/mesh.scene'", dir,
+	    dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	snprintf(a, sizeof a, "%s/in.drr", dir);
+	drr = read_whole(a, &len);
+	snprintf(a, sizeof a, "%s/seq", dir);
+	assert_int_equal(mkdir(a, 0777), 0);
+	dir_write("seq/frame_00000.obj", drr, len);
+	for (k = 0; k < sizeof on_replay / sizeof on_replay[0]; k++) {
+		if (strncmp(on_replay[k], "plot", 4) == 0 &&
+		    system("command -v gnuplot >/dev/null 2>&1") != 0)
+			continue;
+		snprintf(args, sizeof args, on_replay[k], dir, dir);
+		drape(&r, args);
+		expect(&r, 2, NULL, " would overwrite ");
+		assert_file_is("in.drr", drr, len);
+		assert_file_is("seq/frame_00000.obj", drr, len);
+		assert_file_is("m.obj", tri_obj, sizeof tri_obj - 1);
+	}
+	free(drr);
+	/* two outputs of one file are not an input */
+	snprintf(args, sizeof args, "run --headless --record '%s/out.x' --final-obj '%s/out.x' "
+	    "'%s/in.scene'", dir, dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+}
+
+/* Issue 29, 11: a replay or a PC2 file goes back to its start at the end,
+ * so a FIFO (or a pipe: /dev/stdout) is refused before anything is run or
+ * written, exit 2; its reader sees no byte. It got a complete-looking PC2
+ * with 0 samples, and an "Illegal seek". A terminal, which only opening
+ * tells, is refused by the writers as they open it. */
+static void
+unseekable_outputs_refused(void **state)
+{
+	static const char *const cmds[] = {
+		"run --headless --record '%s/pipe29' '%s/ok.scene'",
+		"run --headless --record /dev/stdout '%s/ok.scene'",
+		"export --pc2 '%s/pipe29' --obj '%s/rest.obj' '%s/ok.drr'",
+		"export --pc2 /dev/stdout '%s/ok.drr'",
+	};
+	struct result r;
+	char args[3000], cmd[1000], fifo[700], out[700], rest[700], pid[64];
+	size_t k;
+	pid_t reader;
+	int fd, i;
+
+	(void)state;
+	dir_write_text("ok.scene", SIM CLOTH);
+	snprintf(args, sizeof args, "run --headless --record '%s/ok.drr' '%s/ok.scene'", dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	snprintf(fifo, sizeof fifo, "%s/pipe29", dir);
+	snprintf(out, sizeof out, "%s/pipe29.out", dir);
+	snprintf(rest, sizeof rest, "%s/rest.obj", dir);
+	assert_int_equal(mkfifo(fifo, 0600), 0);
+	for (k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+		/* a reader, so that a writer that opens the FIFO does not block */
+		snprintf(args, sizeof args, "timeout 60 cat '%s' >'%s' & echo $! >'%s/pid'", fifo, out,
+		    dir);
+		assert_int_equal(system(args), 0);
+		snprintf(args, sizeof args, "%s/pid", dir);
+		slurp(args, pid, sizeof pid);
+		reader = (pid_t)strtol(pid, NULL, 10);
+		snprintf(cmd, sizeof cmd, cmds[k], dir, dir, dir);
+		/* its standard output a pipe, which /dev/stdout names */
+		snprintf(args, sizeof args, "{ '%s' %s 2>'%s/err'; echo $? >'%s/rc'; } | cat "
+		    ">/dev/null", DRAPE, cmd, dir, dir);
+		assert_int_equal(system(args), 0);
+		snprintf(args, sizeof args, "%s/err", dir);
+		slurp(args, r.err, sizeof r.err);
+		snprintf(args, sizeof args, "%s/rc", dir);
+		slurp(args, r.out, sizeof r.out);
+		if (strcmp(r.out, "2\n") != 0 || strstr(r.err, "is a FIFO, which cannot be written "
+		    "in this format: it goes back to the file's start at the end; expected a regular "
+		    "file") == NULL)
+			fail_msg("%s: status %s, %s", cmd, r.out, r.err);
+		/* let the reader go: it has read nothing */
+		for (i = 0; i < 600 && (fd = open(fifo, O_WRONLY | O_NONBLOCK)) < 0; i++)
+			nanosleep(&(struct timespec){ 0, 100000000 }, NULL);
+		assert_true(fd >= 0);
+		close(fd);
+		for (i = 0; i < 600 && kill(reader, 0) == 0; i++)
+			nanosleep(&(struct timespec){ 0, 100000000 }, NULL);
+		slurp(out, r.out, sizeof r.out);
+		assert_string_equal(r.out, "");
+		assert_int_equal(access(rest, F_OK), -1);	/* nothing else written */
+	}
+	/* a terminal, through script(1)'s pseudo-terminal */
+	if (system("script -qec true /dev/null >/dev/null 2>&1") != 0)
+		return;
+	snprintf(args, sizeof args, "script -qec \"'%s' run --headless --record /dev/tty "
+	    "'%s/ok.scene'; echo exit \\$?\" /dev/null </dev/null >'%s/tty.out' 2>&1", DRAPE, dir,
+	    dir);
+	assert_int_equal(system(args), 0);
+	snprintf(args, sizeof args, "%s/tty.out", dir);
+	slurp(args, r.out, sizeof r.out);
+	assert_non_null(strstr(r.out, "/dev/tty: cannot seek in it (Illegal seek), and a "
+	    "replay's header is written last, at its start; expected a regular file"));
+	assert_null(strstr(r.out, "DRAPERPL"));
+	assert_non_null(strstr(r.out, "exit 1"));
+}
+
 struct stages {
 	char seen[200];
 };
@@ -971,6 +1141,8 @@ main(void)
 		cmocka_unit_test(values_past_their_unit),
 		cmocka_unit_test(integer_options_in_range),
 		cmocka_unit_test(messages_name_what_was_given),
+		cmocka_unit_test(output_over_an_input),
+		cmocka_unit_test(unseekable_outputs_refused),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

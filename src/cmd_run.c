@@ -19,6 +19,7 @@
 #include "clock.h"
 #include "cmd.h"
 #include "obj.h"
+#include "outfile.h"
 #include "record.h"
 #include "replay.h"
 #include "replay_run.h"
@@ -457,7 +458,8 @@ progress(const struct stepper *st, double wall)
  * the locked nodes (stepper.h, struct lock_stats), the most and the
  * corrections since the row before, for charts of a run's course. */
 struct trace {
-	FILE *f;
+	struct outfile out;	/* written whole or not at all */
+	FILE *f;		/* out's */
 	double frame, next;	/* s: the output interval, and the next row's time */
 	long k;			/* rows written */
 	int most;		/* the most nodes locked at a step since the last row */
@@ -502,12 +504,14 @@ static int
 trace_open(struct trace *tr, const char *path, const struct stepper *st)
 {
 	struct stepper_report r;
+	struct drape_err err;
 
 	memset(tr, 0, sizeof *tr);
-	if ((tr->f = fopen(path, "w")) == NULL) {
-		fprintf(stderr, "drape: --trace %s: %s\n", path, strerror(errno));
+	if (outfile_open(&tr->out, path, &err) != 0) {
+		fprintf(stderr, "drape: --trace: %s\n", err.msg);
 		return -1;
 	}
+	tr->f = tr->out.f;
 	stepper_report(st, &r);
 	tr->frame = 1 / stepper_scene(st)->output_rate;
 	tr->k = (long)floor(r.t / tr->frame + 1e-9);
@@ -517,13 +521,18 @@ trace_open(struct trace *tr, const char *path, const struct stepper *st)
 	return 0;
 }
 
+/* The trace into place, whole; 0, or -1 after saying why (the file at
+ * the path is then as it was: a full disk left it empty). */
 static int
-trace_close(struct trace *tr, const char *path)
+trace_close(struct trace *tr)
 {
+	struct drape_err err;
+
 	if (tr->f == NULL)
 		return 0;
-	if (ferror(tr->f) | (fclose(tr->f) != 0)) {
-		fprintf(stderr, "drape: --trace %s: cannot write it\n", path);
+	tr->f = NULL;
+	if (outfile_close(&tr->out, &err) != 0) {
+		fprintf(stderr, "drape: --trace: %s\n", err.msg);
 		return -1;
 	}
 	return 0;
@@ -609,7 +618,7 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	t0 = clock_seconds();
 	rc = step_headless(st, o->record != NULL ? &rec : NULL, o->trace != NULL ? &tr : NULL,
 	    tty, end);
-	if (trace_close(&tr, o->trace) != 0 && rc == EXIT_OK)
+	if (trace_close(&tr) != 0 && rc == EXIT_OK)
 		rc = EXIT_RUNTIME;
 	if (tty)
 		fputs("\r\033[K", stderr);

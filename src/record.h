@@ -28,7 +28,8 @@ struct recorder {
 long record_default_keyframes(const struct stepper *st);
 
 /* Opens path and writes the scene, a keyframe and a frame of the current
- * state (step 0, or where a resumed run starts). precision: the frames'
+ * state (step 0, or where a resumed run starts); a file that cannot hold
+ * them is removed. precision: the frames'
  * grid step in m (replay.h's lossy frames), 0 for exact float32.
  * events_stored: every event written (--events stored), not only their
  * digest, from which a reader recomputes them (replay_events.h). */

@@ -1001,6 +1001,26 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 	return rc;
 }
 
+void
+replay_writer_discard(struct replay_writer *w)
+{
+	struct stat sb;
+	char *path;
+	bool made;
+
+	if (w->f == NULL)
+		return;
+	made = fstat(fileno(w->f), &sb) == 0 && S_ISREG(sb.st_mode);
+	path = made ? malloc(strlen(w->path) + 1) : NULL;
+	if (path != NULL)
+		strcpy(path, w->path);
+	w->failed = true;	/* nothing more written, the header not marked */
+	replay_writer_close(w, NULL);
+	if (path != NULL)
+		remove(path);
+	free(path);
+}
+
 /* ---- reader ---- */
 
 /* Reads n bytes at off; 0, or -1 past the end or on an I/O error. */

@@ -192,6 +192,10 @@ int replay_writer_flush(struct replay_writer *w, struct drape_err *err);
  * 0, or -1 with a message (the file is then readable up to what was
  * written). */
 int replay_writer_close(struct replay_writer *w, struct drape_err *err);
+/* Gives the file up: closes it and removes it if it is a regular file
+ * (what open made, not a device it was given); frees w. For a recording
+ * that failed before it held anything of the run. */
+void replay_writer_discard(struct replay_writer *w);
 
 /* ---- reading ---- */
 

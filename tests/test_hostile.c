@@ -1086,6 +1086,82 @@ unseekable_outputs_refused(void **state)
 	assert_non_null(strstr(r.out, "exit 1"));
 }
 
+/* "drape ARGS" under a file size limit of kb KiB with SIGXFSZ ignored (a
+ * full disk, as writes see it: EFBIG), stdout to /dev/null (a device, not
+ * limited); the status and stderr into r. */
+static void
+drape_on_full_disk(struct result *r, int kb, const char *args)
+{
+	char cmd[3000];
+
+	snprintf(cmd, sizeof cmd, "bash -c \"trap '' XFSZ; ulimit -f %d; exec '%s' %s\" "
+	    ">/dev/null 2>'%s/err'; echo $? >'%s/rc'", kb, DRAPE, args, dir, dir);
+	assert_int_equal(system(cmd), 0);
+	snprintf(cmd, sizeof cmd, "%s/err", dir);
+	slurp(cmd, r->err, sizeof r->err);
+	snprintf(cmd, sizeof cmd, "%s/rc", dir);
+	slurp(cmd, r->out, sizeof r->out);
+	r->status = (int)strtol(r->out, NULL, 10);
+	r->out[0] = '\0';
+}
+
+/* Issue 29, 2: on a full disk no writer says it wrote what it did not.
+ * plot --png: gnuplot exits 0 when its write fails, and drape said
+ * "wrote" over a truncated PNG (or an empty one in place of a good one);
+ * --trace was written in place, a full disk leaving a cut file where the
+ * old one was. Both now fail, exit 1, with the file as it was. (The
+ * terminal interface's r: tests/tui.sh.) */
+static void
+full_disk_writers_fail(void **state)
+{
+	static const char old[] = "the file as it was\n";
+	struct result r;
+	char args[2000];
+
+	(void)state;
+	dir_write_text("trace.scene", SIM "output_rate = 10000\n" CLOTH);
+	dir_write_text("old.tsv", old);
+	snprintf(args, sizeof args, "run --headless --trace '%s/old.tsv' '%s/trace.scene'", dir,
+	    dir);
+	drape_on_full_disk(&r, 1, args);
+	expect(&r, 1, "drape: --trace: ", "old.tsv: write failed: File too large");
+	assert_file_is("old.tsv", old, sizeof old - 1);
+	snprintf(args, sizeof args, "%s/old.tsv.tmp", dir);
+	assert_int_equal(access(args, F_OK), -1);
+	/* with room, the trace is there whole */
+	snprintf(args, sizeof args, "run --headless --trace '%s/old.tsv' '%s/trace.scene'", dir,
+	    dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	snprintf(args, sizeof args, "%s/old.tsv", dir);
+	slurp(args, r.out, sizeof r.out);
+	assert_non_null(strstr(r.out, "t\tstep\tenergy"));
+
+	if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+		print_message("gnuplot not found: plot --png on a full disk not run\n");
+		return;
+	}
+	snprintf(args, sizeof args, "run --headless --record '%s/plot.drr' '%s/trace.scene'", dir,
+	    dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	dir_write_text("old.png", old);
+	/* the chart is about 100 kB */
+	snprintf(args, sizeof args, "plot --png '%s/old.png' '%s/plot.drr'", dir, dir);
+	drape_on_full_disk(&r, 16, args);
+	expect(&r, 1, "drape plot: --png ", "/old.png: gnuplot wrote 16384 bytes, not a whole PNG "
+	    "(its end, the IEND chunk, is missing: a full disk?)");
+	assert_null(strstr(r.err, "drape plot: wrote"));
+	assert_file_is("old.png", old, sizeof old - 1);
+	snprintf(args, sizeof args, "plot --png /dev/full '%s/plot.drr'", dir);
+	drape(&r, args);
+	expect(&r, 1, "drape plot: --png /dev/full: ", "No space left on device");
+	snprintf(args, sizeof args, "plot --png '%s/old.png' '%s/plot.drr'", dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.err, "drape plot: wrote "));
+}
+
 struct stages {
 	char seen[200];
 };
@@ -1143,6 +1219,7 @@ main(void)
 		cmocka_unit_test(messages_name_what_was_given),
 		cmocka_unit_test(output_over_an_input),
 		cmocka_unit_test(unseekable_outputs_refused),
+		cmocka_unit_test(full_disk_writers_fail),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

@@ -424,6 +424,11 @@ run_tui(struct stepper *st, const struct run_opts *o)
 	tui_run(&src, &o->tui, &res);
 	if ((rec = src.recording(src.ctx, NULL)) != NULL && (name = strdup(rec)) == NULL)
 		rc = EXIT_RUNTIME;
+	/* the replay's header says how the run ended, if it did early */
+	if (rec != NULL)
+		record_set_end(&lv.rec, res.blown_up ? (res.run_error ? REPLAY_END_ERROR :
+		    REPLAY_END_BLOWUP) : res.end == TUI_SIGNAL ? REPLAY_END_INTERRUPTED :
+		    res.end == TUI_ERROR ? REPLAY_END_ERROR : 0);
 	if (rec != NULL && src.record(src.ctx, NULL, why, sizeof why) != 0) {
 		fprintf(stderr, "drape: %s\n", why);
 		rc = EXIT_RUNTIME;
@@ -500,15 +505,15 @@ trace_step(struct trace *tr, const struct stepper *st)
 		trace_row(tr, st);
 }
 
+/* 0, or -1 after saying why, also in err. */
 static int
-trace_open(struct trace *tr, const char *path, const struct stepper *st)
+trace_open(struct trace *tr, const char *path, const struct stepper *st, struct drape_err *err)
 {
 	struct stepper_report r;
-	struct drape_err err;
 
 	memset(tr, 0, sizeof *tr);
-	if (outfile_open(&tr->out, path, &err) != 0) {
-		fprintf(stderr, "drape: --trace: %s\n", err.msg);
+	if (outfile_open(&tr->out, path, err) != 0) {
+		fprintf(stderr, "drape: --trace: %s\n", err->msg);
 		return -1;
 	}
 	tr->f = tr->out.f;
@@ -521,19 +526,51 @@ trace_open(struct trace *tr, const char *path, const struct stepper *st)
 	return 0;
 }
 
-/* The trace into place, whole; 0, or -1 after saying why (the file at
- * the path is then as it was: a full disk left it empty). */
+/* The trace into place, whole; 0, or -1 after saying why, also in err
+ * (the file at the path is then as it was: a full disk left it empty). */
 static int
-trace_close(struct trace *tr)
+trace_close(struct trace *tr, struct drape_err *err)
 {
-	struct drape_err err;
-
 	if (tr->f == NULL)
 		return 0;
 	tr->f = NULL;
-	if (outfile_close(&tr->out, &err) != 0) {
-		fprintf(stderr, "drape: --trace: %s\n", err.msg);
+	if (outfile_close(&tr->out, err) != 0) {
+		fprintf(stderr, "drape: --trace: %s\n", err->msg);
 		return -1;
+	}
+	return 0;
+}
+
+/* An output that failed (the replay, the trace, the final OBJ), for the
+ * run's record: an error at the step the run is at, with msg as its
+ * reason (cut to fit), unless the run had failed already. */
+static void
+output_failed(struct run_end *end, const struct stepper *st, const char *msg)
+{
+	struct stepper_report r;
+	size_t n = strlen(msg);
+
+	if (end->failed)
+		return;
+	stepper_report(st, &r);
+	end->f = (struct step_failure){ STEP_ERROR, r.step, r.t, -1, -1, -1, "" };
+	if (n >= sizeof end->f.why)
+		n = sizeof end->f.why - 1;
+	memcpy(end->f.why, msg, n);
+	end->f.why[n] = '\0';
+	end->failed = true;
+	end->outcome = RUN_ERROR;
+}
+
+/* The replay's header says how the run ended (replay.h REPLAY_END_*). */
+static uint32_t
+replay_end_of(enum run_outcome outcome)
+{
+	switch (outcome) {
+	case RUN_COMPLETED: return 0;
+	case RUN_BLOWUP: return REPLAY_END_BLOWUP;
+	case RUN_ERROR: return REPLAY_END_ERROR;
+	case RUN_INTERRUPTED: return REPLAY_END_INTERRUPTED;
 	}
 	return 0;
 }
@@ -574,11 +611,7 @@ step_headless(struct stepper *st, struct recorder *rec, struct trace *tr, bool t
 				fputc('\n', stderr);
 			fprintf(stderr, "drape: %s; the run stops at step %ld, and the replay holds "
 			    "what was written\n", err.msg, r.step);
-			*f = (struct step_failure){ STEP_ERROR, r.step, r.t, -1, -1, -1, "" };
-			memcpy(f->why, err.msg, sizeof f->why - 1);	/* cut to fit */
-			f->why[sizeof f->why - 1] = '\0';
-			end->failed = true;
-			end->outcome = RUN_ERROR;
+			output_failed(end, st, err.msg);
 			return EXIT_RUNTIME;
 		}
 		if (tty && clock_seconds() - last > 0.25) {
@@ -602,15 +635,19 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	double t0;
 	int rc;
 
+	/* the run's record says an output that could not be opened: no
+	 * step was taken, and the outcome is an error, not "completed" */
+	if (o->trace != NULL && trace_open(&tr, o->trace, st, &err) != 0) {
+		output_failed(end, st, err.msg);
+		return EXIT_RUNTIME;
+	}
 	if (o->record != NULL && record_open(&rec, o->record, st, o->keyframe_every > 0 ?
 	    o->keyframe_every : record_default_keyframes(st), o->precision, o->events_stored,
 	    &err) != 0) {
 		fprintf(stderr, "drape: --record: %s\n", err.msg);
-		return EXIT_RUNTIME;
-	}
-	if (o->trace != NULL && trace_open(&tr, o->trace, st) != 0) {
-		if (o->record != NULL)
-			record_close(&rec, st, &err);
+		output_failed(end, st, err.msg);
+		if (o->trace != NULL)
+			outfile_abort(&tr.out);
 		return EXIT_RUNTIME;
 	}
 	catch_signals();
@@ -618,8 +655,10 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	t0 = clock_seconds();
 	rc = step_headless(st, o->record != NULL ? &rec : NULL, o->trace != NULL ? &tr : NULL,
 	    tty, end);
-	if (trace_close(&tr) != 0 && rc == EXIT_OK)
+	if (trace_close(&tr, &err) != 0 && rc == EXIT_OK) {
+		output_failed(end, st, err.msg);
 		rc = EXIT_RUNTIME;
+	}
 	if (tty)
 		fputs("\r\033[K", stderr);
 	if (interrupted && rc == EXIT_OK) {
@@ -631,10 +670,15 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 		rc = EXIT_INTERRUPTED;
 		end->outcome = RUN_INTERRUPTED;
 	}
-	if (o->record != NULL && record_close(&rec, st, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		if (rc == EXIT_OK)
-			rc = EXIT_RUNTIME;
+	if (o->record != NULL) {
+		record_set_end(&rec, replay_end_of(end->outcome));
+		if (record_close(&rec, st, &err) != 0) {
+			fprintf(stderr, "drape: %s\n", err.msg);
+			if (rc == EXIT_OK) {
+				output_failed(end, st, err.msg);
+				rc = EXIT_RUNTIME;
+			}
+		}
 	}
 	end->wall = clock_seconds() - t0;
 	return rc;
@@ -666,16 +710,16 @@ print_summary(const struct stepper *st, const struct run_opts *o, const struct r
 	return rc;
 }
 
+/* --final-obj; an exit status, said and in err when it fails. */
 static int
-write_final(const struct stepper *st, const char *path)
+write_final(const struct stepper *st, const char *path, struct drape_err *err)
 {
 	const struct cloth *cl = &stepper_network(st)->cl;
-	struct drape_err err;
 
 	if (path == NULL)
 		return EXIT_OK;
-	if (obj_write(path, stepper_x(st), cl->n, cl->tri, cl->ntri, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
+	if (obj_write(path, stepper_x(st), cl->n, cl->tri, cl->ntri, err) != 0) {
+		fprintf(stderr, "drape: %s\n", err->msg);
 		return EXIT_RUNTIME;
 	}
 	return EXIT_OK;
@@ -713,9 +757,13 @@ cmd_run(int argc, char **argv)
 	rc = o.headless ? run_headless(st, &o, &end) : run_tui(st, &o);
 	/* a run stopped by a signal is at a consistent step too */
 	if (rc == EXIT_OK || rc == EXIT_INTERRUPTED || rc > 128) {
-		int w = write_final(st, o.final_obj);
+		struct drape_err err;
+		int w = write_final(st, o.final_obj, &err);
 
-		rc = rc == EXIT_OK ? w : rc;
+		if (rc == EXIT_OK && w != EXIT_OK) {
+			output_failed(&end, st, err.msg);
+			rc = w;
+		}
 	}
 	if (o.headless)
 		rc = print_summary(st, &o, &end, rc);

@@ -128,6 +128,12 @@ record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err
 	return 0;
 }
 
+void
+record_set_end(struct recorder *rc, uint32_t how)
+{
+	rc->w.end = how & REPLAY_END_MASK;
+}
+
 int
 record_close(struct recorder *rc, const struct stepper *st, struct drape_err *err)
 {

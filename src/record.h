@@ -41,6 +41,10 @@ void record_step_of(const struct stepper *st, struct replay_step *s);
 
 /* After each stepper_step that succeeded. */
 int record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err);
+/* How the run ended, for the replay's header: REPLAY_END_INTERRUPTED,
+ * _BLOWUP or _ERROR, or 0 for a run that reached its end time (the
+ * default). Before record_close. */
+void record_set_end(struct recorder *rc, uint32_t how);
 /* A keyframe of the final state, then closes; frees rc even on error. */
 int record_close(struct recorder *rc, const struct stepper *st, struct drape_err *err);
 

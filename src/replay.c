@@ -572,8 +572,8 @@ flush_frames(struct replay_writer *w, bool keep, struct drape_err *err)
 	return rc;
 }
 
-int
-replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
+static int
+write_frame_once(struct replay_writer *w, long step, double t, const double *x,
     struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)w->nodes, i;
@@ -607,8 +607,8 @@ replay_write_frame(struct replay_writer *w, long step, double t, const double *x
 	return flush_if_due(w, err);
 }
 
-int
-replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, const double *y,
+static int
+write_keyframe_once(struct replay_writer *w, long step, double t, double dt, const double *y,
     uint64_t hash, struct drape_err *err)
 {
 	size_t n6 = 6 * (size_t)w->nodes, len = 32 + 8 * n6;
@@ -877,8 +877,8 @@ replay_step_same(const struct replay_step *a, const struct replay_step *b)
 	return true;
 }
 
-int
-replay_write_step(struct replay_writer *w, const struct replay_step *s,
+static int
+write_step_once(struct replay_writer *w, const struct replay_step *s,
     const struct contact_event *ev, struct drape_err *err)
 {
 	size_t nev = (size_t)s->nev;
@@ -907,8 +907,8 @@ replay_write_step(struct replay_writer *w, const struct replay_step *s,
 	return flush_if_due(w, err);
 }
 
-int
-replay_writer_flush(struct replay_writer *w, struct drape_err *err)
+static int
+writer_flush_once(struct replay_writer *w, struct drape_err *err)
 {
 	if (w->failed) {
 		err_set(err, "%s: not written after an earlier write error", w->path);
@@ -944,6 +944,44 @@ flush_if_due(struct replay_writer *w, struct drape_err *err)
 	return cut_if_due(w, err);	/* no provisional chunk did */
 }
 
+/* After any error the writer is failed: it writes nothing more, and its
+ * close does not mark the file closed cleanly (frames or steps may be
+ * missing from it, which a clean close would hide). */
+static int
+failed_if(struct replay_writer *w, int rc)
+{
+	if (rc != 0)
+		w->failed = true;
+	return rc;
+}
+
+int
+replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
+    struct drape_err *err)
+{
+	return failed_if(w, write_frame_once(w, step, t, x, err));
+}
+
+int
+replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, const double *y,
+    uint64_t hash, struct drape_err *err)
+{
+	return failed_if(w, write_keyframe_once(w, step, t, dt, y, hash, err));
+}
+
+int
+replay_write_step(struct replay_writer *w, const struct replay_step *s,
+    const struct contact_event *ev, struct drape_err *err)
+{
+	return failed_if(w, write_step_once(w, s, ev, err));
+}
+
+int
+replay_writer_flush(struct replay_writer *w, struct drape_err *err)
+{
+	return failed_if(w, writer_flush_once(w, err));
+}
+
 int
 replay_writer_close(struct replay_writer *w, struct drape_err *err)
 {
@@ -975,7 +1013,8 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 				rc = -1;
 			else if (fseek(w->f, 0, SEEK_SET) != 0)
 				rc = write_fail(w, err);
-			else if (write_header(w, REPLAY_CLOSED, index_off, err) != 0)
+			else if (write_header(w, REPLAY_CLOSED | (w->end & REPLAY_END_MASK), index_off,
+			    err) != 0)
 				rc = -1;
 		}
 	}

@@ -1162,6 +1162,92 @@ full_disk_writers_fail(void **state)
 	assert_non_null(strstr(r.err, "drape plot: wrote "));
 }
 
+/* The "outcome" and "failure" of a JSON summary, in one string. */
+static const char *
+outcome_of(const struct result *r)
+{
+	const char *o = strstr(r->out, "\"outcome\": ");
+
+	return o != NULL ? o : "(no outcome)";
+}
+
+/* Issue 29, 10: the summary and the replay say what happened. A replay
+ * that cannot be opened or closed was "outcome": "completed" with exit 1
+ * and no failure; now an error with its reason, and a file that could
+ * not be closed is not marked closed. A run that stops on an error (here
+ * the memory [collision] allows: the same path as out of memory) or a
+ * blow-up left a replay "closed cleanly" like a whole run; its header
+ * now says how the run ended. */
+static void
+summary_and_replay_say_what_happened(void **state)
+{
+	struct result r;
+	char args[2000], cmd[3000];
+	const char *o;
+
+	(void)state;
+	dir_write_text("sum.scene", SIM CLOTH);
+	snprintf(args, sizeof args, "run --headless --summary json --record '%s/no/such.drr' "
+	    "'%s/sum.scene'", dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 1);
+	o = outcome_of(&r);
+	if (strncmp(o, "\"outcome\": \"error\", \"failure\": {\"step\": 0, \"t\": 0, ", 50) != 0 ||
+	    strstr(o, "/no/such.drr: cannot create: No such file or directory\"}") == NULL)
+		fail_msg("%s", o);
+
+	/* under a 1 KiB file size limit the scene, keyframe and first frame
+	 * fit; what the close writes does not */
+	snprintf(cmd, sizeof cmd, "bash -c \"trap '' XFSZ; ulimit -f 1; exec '%s' run --headless "
+	    "--summary json --record '%s/close.drr' '%s/sum.scene'\" 2>/dev/null | cat "
+	    ">'%s/close.json'", DRAPE, dir, dir, dir);
+	assert_int_equal(system(cmd), 0);
+	snprintf(cmd, sizeof cmd, "%s/close.json", dir);
+	slurp(cmd, r.out, sizeof r.out);
+	o = outcome_of(&r);
+	if (strstr(r.out, "\"exit_status\": 1, \"outcome\": \"error\", \"failure\": {\"step\": "
+	    "110, ") == NULL || strstr(o, "close.drr: write failed: File too large\"}") == NULL)
+		fail_msg("%s", r.out);
+	snprintf(args, sizeof args, "info '%s/close.drr'", dir);
+	drape(&r, args);
+	assert_non_null(strstr(r.out, "(version 4, not closed: "));
+
+	/* a run that stops on an error: its replay says so */
+	snprintf(args, sizeof args, "run --headless --summary json --record '%s/err.drr' '%%s'",
+	    dir);
+	drape_on(&r, args, "limited.scene", "[simulation]\nduration = 1 ms\n[cloth]\n"
+	    "nodes = 25 25\nspacing = 10 mm\norigin = -0.12 0.15 -0.12 m\norientation = +x +z\n"
+	    "velocity = 300 300 300 m/s\nweight = 150 g/m2\nthickness = 0.55 mm\n"
+	    "modulus_warp = 0.45 MPa\nmodulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\n"
+	    "bending_warp = 3 uN*m\nbending_weft = 2 uN*m\n[plane]\npoint = 0 0 0 m\n"
+	    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nmemory = 2 MB\n");
+	assert_int_equal(r.status, 1);
+	assert_non_null(strstr(outcome_of(&r), "\"outcome\": \"error\", \"failure\": {\"step\": 0"));
+	snprintf(args, sizeof args, "info '%s/err.drr'", dir);
+	drape(&r, args);
+	assert_non_null(strstr(r.out, "(version 4, closed cleanly; the run ended there on an "
+	    "error)"));
+	/* and a blow-up */
+	snprintf(args, sizeof args, "run --headless --dt 5ms --record '%s/blow.drr' '%%s'", dir);
+	drape_on(&r, args, "stiff.scene", "[simulation]\nduration = 1\n[cloth]\nnodes = 6 6\n"
+	    "spacing = 1 cm\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 30 MPa\n"
+	    "modulus_weft = 30 MPa\nshear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n"
+	    "[pin]\nnodes = 0 0\n");
+	assert_int_equal(r.status, 3);
+	snprintf(args, sizeof args, "info '%s/blow.drr'", dir);
+	drape(&r, args);
+	assert_non_null(strstr(r.out, "(version 4, closed cleanly; the run ended there in a "
+	    "blow-up)"));
+	/* a whole run: no such words */
+	snprintf(args, sizeof args, "run --headless --record '%s/whole29.drr' '%s/sum.scene'",
+	    dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	snprintf(args, sizeof args, "info '%s/whole29.drr'", dir);
+	drape(&r, args);
+	assert_non_null(strstr(r.out, "(version 4, closed cleanly)\n"));
+}
+
 struct stages {
 	char seen[200];
 };
@@ -1220,6 +1306,7 @@ main(void)
 		cmocka_unit_test(output_over_an_input),
 		cmocka_unit_test(unseekable_outputs_refused),
 		cmocka_unit_test(full_disk_writers_fail),
+		cmocka_unit_test(summary_and_replay_say_what_happened),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

@@ -2,6 +2,7 @@
 #ifndef DRAPE_CMD_H
 #define DRAPE_CMD_H
 
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 
@@ -38,6 +39,17 @@ int cmd_step_failed(const char *cmd, const char *path, const struct step_failure
 /* After getopt_long returned '?' for command cmd: says which option was
  * unknown or lacked its value, then the usage; returns EXIT_USAGE. */
 int cmd_option_error(const char *cmd, char **argv);
+
+/* The signal (SIGINT, SIGTERM, SIGHUP) that asked a command which calls
+ * cmd_catch_signals to stop, or 0. */
+extern volatile sig_atomic_t cmd_signal;
+/* From here on those signals set cmd_signal instead of killing the
+ * process, so that a command removes its temporary files on the way out
+ * (it checks cmd_signal between its writes); a blocking call they
+ * interrupt, such as opening a FIFO, fails with EINTR rather than go on. */
+void cmd_catch_signals(void);
+/* "interrupted", "hung up" or "terminated", for a message. */
+const char *cmd_signal_word(int sig);
 
 /* s as a whole number from lo to hi: decimal digits with an optional sign
  * and nothing after them, within long's range (strtol's errno) and the

@@ -5,6 +5,7 @@
 #include <float.h>
 #include <getopt.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -39,8 +40,8 @@ write_obj_frame(const char *path, const float *x, const struct replay_meta *m,
  * EXIT_USAGE when the replay holds no frame that can be exported (none
  * intact, a chunk that passes its CRC but does not decode, a frame time
  * out of range) or a frame of --obj-seq would overwrite in, EXIT_RUNTIME
- * when an output cannot be written; what was being written is then
- * removed. */
+ * when an output cannot be written, EXIT_INTERRUPTED when a signal came
+ * (cmd_signal); what was being written is then removed. */
 static int
 export(const struct replay *r, const char *in, const char *pc2, const char *obj,
     const char *seq, struct drape_err *err)
@@ -62,6 +63,15 @@ export(const struct replay *r, const char *in, const char *pc2, const char *obj,
 		}
 		for (k = 0; k < fr.count; k++, frame++) {
 			const float *x = fr.x + k * n3;
+
+			/* a signal: the PC2 begun is removed, the whole files
+			 * written so far stay */
+			if (cmd_signal) {
+				err_set(err, "%s at frame %zu: the files begun were removed",
+				    cmd_signal_word(cmd_signal), frame);
+				rc = EXIT_INTERRUPTED;
+				goto fail_fr;
+			}
 
 			if (first) {
 				double start = fr.t[k] * m->output_rate;
@@ -104,6 +114,12 @@ export(const struct replay *r, const char *in, const char *pc2, const char *obj,
 		err_set(err, "no intact frame to export");
 		return EXIT_USAGE;
 	}
+	if (cmd_signal) {
+		rc = EXIT_INTERRUPTED;
+		err_set(err, "%s after the last frame: the files begun were removed",
+		    cmd_signal_word(cmd_signal));
+		goto fail;
+	}
 	if (open_pc2 && pc2_close(&pw, err) != 0)
 		return EXIT_RUNTIME;
 	return EXIT_OK;
@@ -112,6 +128,12 @@ fail_fr:
 fail:
 	if (open_pc2)
 		pc2_abort(&pw);
+	/* a write a signal cut (a FIFO's open) is the signal's doing */
+	if (cmd_signal && rc != EXIT_INTERRUPTED) {
+		err_set(err, "%s at frame %zu: the files begun were removed",
+		    cmd_signal_word(cmd_signal), frame);
+		rc = EXIT_INTERRUPTED;
+	}
 	return rc;
 }
 
@@ -174,6 +196,9 @@ cmd_export(int argc, char **argv)
 		fprintf(stderr, "drape export: %s: cannot create: %s\n", seq, strerror(errno));
 		return EXIT_RUNTIME;
 	}
+	/* from here, temporary files (the PC2's, each OBJ's) exist: a signal
+	 * is let out once they are gone */
+	cmd_catch_signals();
 	if (replay_open(&r, argv[optind], &err) != 0) {
 		fprintf(stderr, "drape export: %s\n", err.msg);
 		return EXIT_USAGE;

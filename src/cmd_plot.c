@@ -375,7 +375,8 @@ cmd_plot(int argc, char **argv)
 		rc = steps_block(f, path, &nsteps, &passes);
 	if (rc == EXIT_OK && png != NULL) {
 		/* gnuplot draws into a file of ours, checked before it is
-		 * published */
+		 * published; a signal lets it out only once it is removed */
+		cmd_catch_signals();
 		if ((tmp = plot_tmp_name()) == NULL) {
 			fprintf(stderr, "drape plot: --png %s: a temporary file: %s\n", png,
 			    strerror(errno));
@@ -393,6 +394,11 @@ cmd_plot(int argc, char **argv)
 	if (rc == EXIT_OK)
 		rc = run_gnuplot(prog, script, len);
 	if (tmp != NULL) {
+		if (cmd_signal) {
+			fprintf(stderr, "drape plot: %s: --png %s not written\n",
+			    cmd_signal_word(cmd_signal), png);
+			rc = EXIT_INTERRUPTED;
+		}
 		if (rc == EXIT_OK)
 			rc = publish(tmp, png);
 		unlink(tmp);

@@ -58,12 +58,6 @@ catch_signals(void)
 	signal(SIGPIPE, SIG_IGN);
 }
 
-static const char *
-signal_word(int sig)
-{
-	return sig == SIGINT ? "interrupted" : sig == SIGHUP ? "hung up" : "terminated";
-}
-
 struct run_opts {
 	const char *scene, *final_obj, *record, *resume;
 	const char *trace;	/* --trace: a TSV row per output frame */
@@ -665,7 +659,7 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 		stepper_report(st, &r);
 		/* say whether a step was under way, so that a user (and test_cli,
 		 * without a clock) can tell it was given up, not finished */
-		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)%s\n", signal_word(interrupted),
+		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)%s\n", cmd_signal_word(interrupted),
 		    r.step, r.t, end->given_up ? "; the step under way was given up" : "");
 		rc = EXIT_INTERRUPTED;
 		end->outcome = RUN_INTERRUPTED;

@@ -1,12 +1,43 @@
 /* cmd_util.c: what the subcommands share. */
 #include <ctype.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cmd.h"
 #include "outfile.h"
 #include "stepper.h"
+
+volatile sig_atomic_t cmd_signal;
+
+static void
+on_signal(int sig)
+{
+	cmd_signal = sig;
+}
+
+void
+cmd_catch_signals(void)
+{
+	static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
+	struct sigaction sa;
+	size_t k;
+
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sa.sa_flags = 0;	/* no SA_RESTART: a blocked open gives up */
+	sigemptyset(&sa.sa_mask);
+	for (k = 0; k < sizeof sigs / sizeof sigs[0]; k++)
+		sigaction(sigs[k], &sa, NULL);
+}
+
+const char *
+cmd_signal_word(int sig)
+{
+	return sig == SIGINT ? "interrupted" : sig == SIGHUP ? "hung up" : "terminated";
+}
 
 int
 cmd_step_failed(const char *cmd, const char *path, const struct step_failure *f)

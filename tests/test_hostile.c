@@ -9,6 +9,7 @@
  * clock, the OBJ vertex bound, the frame count past a long, setup's
  * stages. */
 #define _XOPEN_SOURCE 700	/* mknod, S_IFCHR */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -1248,6 +1249,114 @@ summary_and_replay_say_what_happened(void **state)
 	assert_non_null(strstr(r.out, "(version 4, closed cleanly)\n"));
 }
 
+/* "drape ARGS" started in the background (exec'd by sh, so that the pid is
+ * drape's), stderr into dir/bg.err. */
+static pid_t
+drape_background(const char *args)
+{
+	char cmd[3000];
+	pid_t pid;
+
+	snprintf(cmd, sizeof cmd, "exec '%s' %s >/dev/null 2>'%s/bg.err' </dev/null", DRAPE, args,
+	    dir);
+	assert_true((pid = fork()) >= 0);
+	if (pid == 0) {
+		execl("/bin/sh", "sh", "-c", cmd, (char *)NULL);
+		_exit(127);
+	}
+	return pid;
+}
+
+/* Polls for dir/name to exist, up to 120 s; false if it never did. */
+static bool
+appears(const char *name)
+{
+	char path[700];
+	int k;
+
+	snprintf(path, sizeof path, "%s/%s", dir, name);
+	for (k = 0; k < 12000; k++) {
+		if (access(path, F_OK) == 0)
+			return true;
+		nanosleep(&(struct timespec){ 0, 10000000 }, NULL);
+	}
+	return false;
+}
+
+/* Issue 29, 9: a signal during export left OUT.pc2.tmp and
+ * frame_NNNNN.obj.tmp behind (it killed the process between a temporary
+ * file's creation and its rename). Now the signal is noted, the files
+ * begun are removed, and export exits 130. Two cases: blocked opening a
+ * FIFO where frame 0's OBJ goes (the PC2's temporary file open, at a
+ * known moment), and in the middle of 101 frames of 10,000 nodes, most
+ * of whose time is the OBJ files' writing. */
+static void
+export_signal_removes_temporaries(void **state)
+{
+	struct result r;
+	char args[2000], path[700];
+	struct dirent *e;
+	DIR *d;
+	pid_t pid;
+	int st, k, tmps = 0;
+
+	(void)state;
+	snprintf(args, sizeof args, "run --headless --record '%s/sig.drr' '%%s'", dir);
+	drape_on(&r, args, "sig.scene", "[simulation]\nduration = 0.2\ndt = 2 ms\n"
+	    "integrator = fast\noutput_rate = 500\n[cloth]\nnodes = 100 100\nspacing = 10 mm\n"
+	    "weight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\n"
+	    "shear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n");
+	assert_int_equal(r.status, 0);
+
+	snprintf(path, sizeof path, "%s/seq1", dir);
+	assert_int_equal(mkdir(path, 0777), 0);
+	snprintf(path, sizeof path, "%s/seq1/frame_00000.obj", dir);
+	assert_int_equal(mkfifo(path, 0600), 0);
+	snprintf(args, sizeof args, "export --pc2 '%s/sig.pc2' --obj-seq '%s/seq1' '%s/sig.drr'",
+	    dir, dir, dir);
+	pid = drape_background(args);
+	assert_true(appears("sig.pc2.tmp"));
+	/* again each second until it is out: one that came just before the
+	 * FIFO's open, not within it, left it blocked there */
+	for (k = 0; k < 120 && waitpid(pid, &st, WNOHANG) == 0; k++) {
+		assert_int_equal(kill(pid, SIGINT), 0);
+		nanosleep(&(struct timespec){ 1, 0 }, NULL);
+	}
+	assert_true(k < 120);
+	snprintf(path, sizeof path, "%s/bg.err", dir);
+	slurp(path, r.err, sizeof r.err);
+	if (!WIFEXITED(st) || WEXITSTATUS(st) != 130)
+		fail_msg("status %#x: %s", st, r.err);
+	assert_non_null(strstr(r.err, "sig.drr: interrupted at frame 0: the files begun were "
+	    "removed"));
+	snprintf(path, sizeof path, "%s/sig.pc2.tmp", dir);
+	assert_int_equal(access(path, F_OK), -1);
+	snprintf(path, sizeof path, "%s/sig.pc2", dir);
+	assert_int_equal(access(path, F_OK), -1);
+
+	snprintf(path, sizeof path, "%s/seq2", dir);
+	assert_int_equal(mkdir(path, 0777), 0);
+	snprintf(args, sizeof args, "export --obj-seq '%s/seq2' '%s/sig.drr'", dir, dir);
+	pid = drape_background(args);
+	assert_true(appears("seq2/frame_00003.obj"));
+	assert_int_equal(kill(pid, SIGTERM), 0);
+	assert_int_equal(waitpid(pid, &st, 0), pid);
+	snprintf(path, sizeof path, "%s/bg.err", dir);
+	slurp(path, r.err, sizeof r.err);
+	if (!WIFEXITED(st) || WEXITSTATUS(st) != 130)
+		fail_msg("status %#x: %s", st, r.err);
+	assert_non_null(strstr(r.err, ": terminated at frame "));
+	snprintf(path, sizeof path, "%s/seq2", dir);
+	assert_non_null(d = opendir(path));
+	while ((e = readdir(d)) != NULL)
+		if (strstr(e->d_name, ".tmp") != NULL) {
+			print_message("left behind: %s\n", e->d_name);
+			tmps++;
+		}
+	closedir(d);
+	assert_int_equal(tmps, 0);
+}
+
 struct stages {
 	char seen[200];
 };
@@ -1307,6 +1416,7 @@ main(void)
 		cmocka_unit_test(unseekable_outputs_refused),
 		cmocka_unit_test(full_disk_writers_fail),
 		cmocka_unit_test(summary_and_replay_say_what_happened),
+		cmocka_unit_test(export_signal_removes_temporaries),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

@@ -1357,6 +1357,57 @@ export_signal_removes_temporaries(void **state)
 	assert_int_equal(tmps, 0);
 }
 
+/* Issue 29, 4: the fast path's substeps a step are bounded: a damping of
+ * 1e9/s asked 1e7 a step (18 minutes a step), 1e12/s overflowed an int,
+ * an 8 x 8 cloth on 10 um squares took 695,805 in its first step; each is
+ * refused at stepper_new, at dt's line, with the step that would do. A
+ * state whose yarns' tension asks more (springs of 1e15 Pa pulled by a
+ * moving node: 680,482 substeps in 5 steps) takes at most the bound. */
+static void
+fast_substeps_bounded(void **state)
+{
+	struct result r;
+	const char *at;
+	long steps, substeps;
+
+	(void)state;
+	drape_on(&r, "run --headless --integrator fast --set 'cloth.damping=1e9/s' '%s'",
+	    "damp.scene", SIM CLOTH);
+	expect(&r, 2, "damp.scene:1: dt = auto: ", "the fast path's substeps here are 1e-09 s "
+	    "long at most (the damping rate, 1e+09 /s), so a step of 0.01 s takes 1e+07 of them; "
+	    "expected at most 10000 a step: a dt of at most 1e-05 s");
+	drape_on(&r, "run --headless --set 'cloth.damping=1e12/s' '%s'", "damp.scene",
+	    "[simulation]\nduration = 10 ms\nintegrator = fast\ndt = 5 ms\n" CLOTH);
+	expect(&r, 2, "damp.scene:4: dt: ", "takes 5e+09 of them; expected at most 10000 a step");
+	drape_on(&r, "run --headless '%s'", "tiny.scene", "[simulation]\nduration = 10 ms\n"
+	    "integrator = fast\n[cloth]\nnodes = 8 8\nspacing = 10 um\nweight = 100 g/m2\n"
+	    "thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
+	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n");
+	expect(&r, 2, "tiny.scene:1: dt = auto: ", "(bending's highest frequency, 1.79e+08 rad/s), "
+	    "so a step of 0.01 s takes 9.94e+05 of them; expected at most 10000 a step");
+	/* the step that it names runs */
+	drape_on(&r, "run --headless --dt 0.0001 --until 1ms '%s'", "tiny.scene",
+	    "[simulation]\nduration = 10 ms\nintegrator = fast\n[cloth]\nnodes = 8 8\n"
+	    "spacing = 10 um\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\n"
+	    "modulus_weft = 1 MPa\nshear_modulus = 0\nbending_warp = 1 uN*m\n"
+	    "bending_weft = 1 uN*m\n");
+	if (r.status != 0)
+		fail_msg("status %d: %s", r.status, r.err);
+
+	drape_on(&r, "run --headless --summary json '%s'", "taut.scene", "[simulation]\n"
+	    "duration = 50 ms\nintegrator = fast\n[cloth]\nnodes = 4 4\nspacing = 1 cm\n"
+	    "weight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1e15\nmodulus_weft = 1e15\n"
+	    "shear_modulus = 0\nbending_warp = 1 uN*m\nbending_weft = 1 uN*m\n[move]\n"
+	    "nodes = 0 0\nvelocity = 1 0 0 m/s\n");
+	assert_non_null(at = strstr(r.out, "\"steps\": "));
+	steps = strtol(at + 9, NULL, 10);
+	assert_non_null(at = strstr(r.out, "\"substeps\": "));
+	substeps = strtol(at + 12, NULL, 10);
+	print_message("taut: exit %d, %ld steps, %ld substeps\n", r.status, steps, substeps);
+	assert_true(steps >= 1);
+	assert_true(substeps <= steps * 10000 + 1);
+}
+
 struct stages {
 	char seen[200];
 };
@@ -1417,6 +1468,7 @@ main(void)
 		cmocka_unit_test(full_disk_writers_fail),
 		cmocka_unit_test(summary_and_replay_say_what_happened),
 		cmocka_unit_test(export_signal_removes_temporaries),
+		cmocka_unit_test(fast_substeps_bounded),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

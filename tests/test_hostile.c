@@ -18,6 +18,7 @@
 #include <time.h>
 #include <zlib.h>
 
+#include "audit.h"
 #include "clock.h"
 #include "mesh.h"
 #include "record.h"
@@ -1408,6 +1409,82 @@ fast_substeps_bounded(void **state)
 	assert_true(substeps <= steps * 10000 + 1);
 }
 
+/* An OBJ of n triangles, each its own three vertices, triangle k at height
+ * k * dy (0: all coincident). */
+static void
+write_pile(const char *name, int n, double dy)
+{
+	char path[700];
+	FILE *f;
+	int k;
+
+	snprintf(path, sizeof path, "%s/%s", dir, name);
+	assert_non_null(f = fopen(path, "w"));
+	for (k = 0; k < n; k++)
+		fprintf(f, "v 0 %.17g 0\nv 1 %.17g 0\nv 0 %.17g 1\n", k * dy, k * dy, k * dy);
+	for (k = 0; k < n; k++)
+		fprintf(f, "f %d %d %d\n", 3 * k + 1, 3 * k + 2, 3 * k + 3);
+	assert_int_equal(fclose(f), 0);
+}
+
+/* Issue 29, 8: check's audit of n triangles piled on one another was
+ * quadratic (80,000 coincident ones: 16.5 s). Its work is bounded by
+ * audit_max_work(n): counted, not timed. Coincident triangles: a lower
+ * bound of pairs, exit 4; triangles stacked a micrometre apart (every
+ * pair of boxes compared, none meeting): nothing proved, exit 1. */
+static void
+check_work_bounded(void **state)
+{
+	const int n = 10000;
+	struct result r;
+	struct audit_result a;
+	char args[1000];
+	const char *at;
+	long candidates, tests;
+	double *x;
+	int *tri, first[2], k;
+
+	(void)state;
+	write_pile("pile.obj", n, 0);
+	snprintf(args, sizeof args, "check '%s/pile.obj'", dir);
+	drape(&r, args);
+	expect(&r, 4, "pile.obj: ", "the audit stopped at its bound for 10000 triangles (");
+	assert_non_null(strstr(r.err, "the pairs counted are a lower bound"));
+	assert_non_null(at = strstr(r.err, "triangles ("));
+	candidates = strtol(at + 11, NULL, 10);
+	assert_non_null(at = strstr(r.err, "compared, "));
+	tests = strtol(at + 10, NULL, 10);
+	print_message("coincident: %ld comparisons, %ld tests\n", candidates, tests);
+	assert_true(candidates + AUDIT_TEST_WORK * tests <= audit_max_work((size_t)n));
+	assert_true(candidates + AUDIT_TEST_WORK * tests > audit_max_work((size_t)n) - 40);
+
+	write_pile("stack.obj", n, 1e-6);
+	snprintf(args, sizeof args, "check '%s/stack.obj'", dir);
+	drape(&r, args);
+	expect(&r, 1, "stack.obj: ", "none intersected so far, which proves nothing");
+	assert_non_null(strstr(r.out, "stack.obj\tobj\t-\t-\t0\t-\n"));
+
+	/* the library's count: the same bound, and a cloth far below it */
+	assert_non_null(x = malloc(9 * (size_t)n * sizeof *x));
+	assert_non_null(tri = malloc(3 * (size_t)n * sizeof *tri));
+	for (k = 0; k < 3 * n; k++) {
+		x[3 * k] = k % 3 == 1;
+		x[3 * k + 1] = 0;
+		x[3 * k + 2] = k % 3 == 2;
+		tri[k] = k;
+	}
+	assert_int_equal(audit_self(x, tri, (size_t)n, first, &a), 0);
+	assert_true(a.cut && a.pairs > 0);
+	assert_true(a.candidates + AUDIT_TEST_WORK * a.tests <= audit_max_work((size_t)n));
+	assert_int_equal(audit_self_intersections(x, tri, (size_t)n, first), AUDIT_TOO_MANY);
+	free(x);
+	free(tri);
+	snprintf(args, sizeof args, "check --every 1 '%s/scenes/tablecloth.scene'", TOP_SRCDIR);
+	drape(&r, args);
+	if (r.status != 0 || strstr(r.err, "stopped") != NULL)
+		fail_msg("status %d: %s", r.status, r.err);
+}
+
 struct stages {
 	char seen[200];
 };
@@ -1469,6 +1546,7 @@ main(void)
 		cmocka_unit_test(summary_and_replay_say_what_happened),
 		cmocka_unit_test(export_signal_removes_temporaries),
 		cmocka_unit_test(fast_substeps_bounded),
+		cmocka_unit_test(check_work_bounded),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

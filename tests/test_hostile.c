@@ -7,7 +7,14 @@
  * hash, the setup of a large cloth shown on a terminal; and, where the
  * binary cannot show it, the library: the wall-clock flush with a fake
  * clock, the OBJ vertex bound, the frame count past a long, setup's
- * stages. */
+ * stages.
+ *
+ * Then issue 29's (its item 3, the terminal gone, and the r key's part of
+ * 2 are in tests/tui.sh): the largest scene file, values past their unit,
+ * integer options in range, messages that name what was given, outputs
+ * over inputs, outputs that must seek, writers on a full disk, what the
+ * summary and the replay say of a run's end, signals during export, the
+ * fast path's substeps and check's work, each bounded. */
 #define _XOPEN_SOURCE 700	/* mknod, S_IFCHR */
 #include <dirent.h>
 #include <errno.h>

@@ -4,7 +4,9 @@
  * on a live run r records. c cycles the colouring (colouring.h) where
  * there is colour, u the glyphs: ASCII, or in a UTF-8 locale braille and
  * half blocks (glyphs.h). */
+#include <ctype.h>
 #include <curses.h>
+#include <errno.h>
 #include <math.h>
 #include <poll.h>
 #include <signal.h>
@@ -1110,9 +1112,13 @@ int
 tui_parse_delay(const char *s, int *delay)
 {
 	char *end;
-	long d = strtol(s, &end, 10);
+	long d;
 
-	if (end == s || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
+	if (!isdigit((unsigned char)s[0]))	/* strtol would skip blanks, take a sign */
+		return -1;
+	errno = 0;
+	d = strtol(s, &end, 10);
+	if (errno != 0 || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
 		return -1;
 	*delay = (int)d;
 	return 0;

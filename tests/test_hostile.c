@@ -848,6 +848,9 @@ integer_options_in_range(void **state)
 		{ "snapshot --step 99999999999999999999 '%s'", "--step '99999999999999999999': "
 		  "expected a whole number from 0" },
 		{ "snapshot --png x.png --frames 9223372036854775807 '%s'", "--frames" },
+		{ "run --headless -d ' 5' '%s'", "--delay ' 5': expected tenths of a second" },
+		{ "run --headless -d 99999999999999999999 '%s'", "--delay '99999999999999999999': "
+		  "expected tenths" },
 	};
 	struct result r;
 	char args[1200];

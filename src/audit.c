@@ -4,9 +4,11 @@
  * prune on boxes, slab by slab, that hands it every pair of triangles whose
  * boxes touch. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "audit.h"
 
@@ -534,8 +536,10 @@ share_vertex(const struct mesh *m, size_t s, size_t t)
 	return 0;
 }
 
-/* 1 if the triangles of boxes u and w count and intersect; (*s, *t) is
- * the pair, the lower triangle first within a mesh, else mesh A's. */
+/* 1 if the triangles of boxes u and w intersect, 0 if not, -1 if the pair
+ * does not count (neighbours, or one mesh's own in a cross audit: no exact
+ * test made); (*s, *t) is the pair, the lower triangle first within a
+ * mesh, else mesh A's. */
 static int
 test_pair(const struct mesh *ms[2], int self, const struct box *u, const struct box *w,
     size_t *s, size_t *t)
@@ -543,7 +547,7 @@ test_pair(const struct mesh *ms[2], int self, const struct box *u, const struct 
 	vec3 p[3], q[3];
 
 	if (self ? share_vertex(ms[0], u->t, w->t) : u->m == w->m)
-		return 0;
+		return -1;
 	if (self ? u->t < w->t : u->m == 0)
 		*s = u->t, *t = w->t;
 	else
@@ -553,22 +557,34 @@ test_pair(const struct mesh *ms[2], int self, const struct box *u, const struct 
 	return audit_tri_tri(p, q);
 }
 
+long
+audit_max_work(size_t n)
+{
+	double most = (double)AUDIT_WORK_PER_TRIANGLE * (double)n;
+
+	return most < AUDIT_WORK_MIN ? AUDIT_WORK_MIN :
+	    most < (double)(LONG_MAX / 2) ? (long)most : LONG_MAX / 2;
+}
+
 /* Intersecting pairs within a (b == NULL; pairs sharing a vertex skipped)
- * or between a and b; the lowest pair into first if not NULL. */
-static long
-sweep(const struct mesh *a, const struct mesh *b, int first[2])
+ * or between a and b into *r; the lowest pair into first if not NULL. 0,
+ * or -1 out of memory. */
+static int
+sweep(const struct mesh *a, const struct mesh *b, int first[2], struct audit_result *r)
 {
 	const struct mesh *ms[2] = { a, b != NULL ? b : a };
 	size_t nb = b != NULL ? b->n : 0, n, i, j, k, s, t, *start = NULL;
 	struct box *box, *ent = NULL;
 	struct slabs sl;
-	long count = -1;
-	int ax;
+	long most, work = 0;
+	int ax, rc = -1, hit;
 
+	memset(r, 0, sizeof *r);
 	if (nb > SIZE_MAX / sizeof *box || a->n > SIZE_MAX / sizeof *box - nb)
 		return -1;
 	if ((n = a->n + nb) == 0)
 		return 0;
+	most = audit_max_work(n);
 	if ((box = malloc(n * sizeof *box)) == NULL)
 		return -1;
 	for (i = 0; i < n; i++)
@@ -596,41 +612,76 @@ sweep(const struct mesh *a, const struct mesh *b, int first[2])
 		for (k = box[i].s0; k <= box[i].s1; k++)
 			ent[start[k]++] = box[i];
 
-	count = 0;
-	for (k = 0; k < sl.n; k++)
-		for (i = k > 0 ? start[k - 1] : 0; i < start[k]; i++)
+	/* every pair the sweep looks at is work, and an exact test is
+	 * AUDIT_TEST_WORK more: triangles piled on one another make every
+	 * pair one of each, and the audit stops at its bound */
+	for (k = 0; k < sl.n && !r->cut; k++)
+		for (i = k > 0 ? start[k - 1] : 0; i < start[k] && !r->cut; i++)
 			for (j = i + 1; j < start[k] && ent[j].key <= ent[i].hi[ax]; j++) {
+				/* room for this pair and its test: never past most */
+				if (work > most - 1 - AUDIT_TEST_WORK) {
+					r->cut = true;
+					break;
+				}
+				work++;
+				r->candidates++;
 				/* the pair's first common slab is k (s0 < k for neither) */
 				if ((ent[i].s0 < k && ent[j].s0 < k) || !meet(&ent[i], &ent[j]) ||
-				    !test_pair(ms, b == NULL, &ent[i], &ent[j], &s, &t))
+				    (hit = test_pair(ms, b == NULL, &ent[i], &ent[j], &s, &t)) < 0)
 					continue;
-				if (first != NULL && (count == 0 || (int)s < first[0] ||
+				work += AUDIT_TEST_WORK;
+				r->tests++;
+				if (!hit)
+					continue;
+				if (first != NULL && (r->pairs == 0 || (int)s < first[0] ||
 				    ((int)s == first[0] && (int)t < first[1]))) {
 					first[0] = (int)s;
 					first[1] = (int)t;
 				}
-				count++;
+				r->pairs++;
 			}
+	rc = 0;
 out:
 	free(ent);
 	free(start);
 	free(box);
-	return count;
+	return rc;
+}
+
+int
+audit_self(const double *x, const int *tri, size_t ntri, int first[2], struct audit_result *r)
+{
+	struct mesh m = { x, tri, ntri };
+
+	return sweep(&m, NULL, first, r);
+}
+
+int
+audit_cross(const double *xa, const int *ta, size_t na, const double *xb, const int *tb,
+    size_t nb, struct audit_result *r)
+{
+	struct mesh a = { xa, ta, na }, b = { xb, tb, nb };
+
+	return sweep(&a, &b, NULL, r);
 }
 
 long
 audit_self_intersections(const double *x, const int *tri, size_t ntri, int first[2])
 {
-	struct mesh m = { x, tri, ntri };
+	struct audit_result r;
 
-	return sweep(&m, NULL, first);
+	if (audit_self(x, tri, ntri, first, &r) != 0)
+		return -1;
+	return r.cut ? AUDIT_TOO_MANY : r.pairs;
 }
 
 long
 audit_cross_intersections(const double *xa, const int *ta, size_t na,
     const double *xb, const int *tb, size_t nb)
 {
-	struct mesh a = { xa, ta, na }, b = { xb, tb, nb };
+	struct audit_result r;
 
-	return sweep(&a, &b, NULL);
+	if (audit_cross(xa, ta, na, xb, tb, nb, &r) != 0)
+		return -1;
+	return r.cut ? AUDIT_TOO_MANY : r.pairs;
 }

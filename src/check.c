@@ -6,23 +6,29 @@ int
 check_state(const struct scene *sc, const struct cloth *cl, const double *x,
     struct check_result *r)
 {
+	struct audit_result a;
 	size_t o;
 	int p;
 
 	r->inside = 0;
 	r->first[0] = r->first[1] = -1;
-	if ((r->pairs = audit_self_intersections(x, cl->tri, cl->ntri, r->first)) < 0)
+	if (audit_self(x, cl->tri, cl->ntri, r->first, &a) != 0)
 		return -1;
+	r->pairs = a.pairs;
+	r->candidates = a.candidates;
+	r->tests = a.tests;
+	r->cut = a.cut;
 	for (o = 0; o < sc->nobstacles; o++) {
 		const struct obstacle *ob = &sc->obstacles[o];
 
 		if (ob->kind == OBSTACLE_MESH) {
-			long k = audit_cross_intersections(x, cl->tri, cl->ntri, ob->mesh.x,
-			    ob->mesh.tri, ob->mesh.ntri);
-
-			if (k < 0)
+			if (audit_cross(x, cl->tri, cl->ntri, ob->mesh.x, ob->mesh.tri,
+			    ob->mesh.ntri, &a) != 0)
 				return -1;
-			r->pairs += k;
+			r->pairs += a.pairs;
+			r->candidates += a.candidates;
+			r->tests += a.tests;
+			r->cut = r->cut || a.cut;
 			continue;	/* a mesh is a surface: crossing it is what counts */
 		}
 		for (p = 0; p < cl->n; p++)

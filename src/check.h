@@ -12,6 +12,10 @@ struct check_result {
 	long pairs;		/* intersecting triangle pairs */
 	long inside;		/* nodes inside an obstacle */
 	int first[2];		/* the lowest cloth-cloth pair, when pairs > 0 */
+	long candidates;	/* pairs of boxes the audits compared */
+	long tests;		/* and the exact tests they made */
+	bool cut;		/* an audit stopped at its bound (audit.h):
+				 * pairs is a lower bound */
 };
 
 /* x holds the cloth's node positions. Returns 0, or -1 when out of memory. */

@@ -2,6 +2,8 @@
 #ifndef DRAPE_CMD_H
 #define DRAPE_CMD_H
 
+#include <signal.h>
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "scene.h"
@@ -38,16 +40,51 @@ int cmd_step_failed(const char *cmd, const char *path, const struct step_failure
  * unknown or lacked its value, then the usage; returns EXIT_USAGE. */
 int cmd_option_error(const char *cmd, char **argv);
 
+/* The signal (SIGINT, SIGTERM, SIGHUP) that asked a command which calls
+ * cmd_catch_signals to stop, or 0. */
+extern volatile sig_atomic_t cmd_signal;
+/* From here on those signals set cmd_signal instead of killing the
+ * process, so that a command removes its temporary files on the way out
+ * (it checks cmd_signal between its writes); a blocking call they
+ * interrupt, such as opening a FIFO, fails with EINTR rather than go on. */
+void cmd_catch_signals(void);
+/* "interrupted", "hung up" or "terminated", for a message. */
+const char *cmd_signal_word(int sig);
+
+/* s as a whole number from lo to hi: decimal digits with an optional sign
+ * and nothing after them, within long's range (strtol's errno) and the
+ * bounds. 0 with *out set, or -1 (*out unchanged). */
+int cmd_parse_long(const char *s, long lo, long hi, long *out);
+
+/* An output named by option opt (out NULL: not given) that is the same
+ * file as an input (outfile_same) would destroy it: EXIT_USAGE after
+ * saying "drape CMD: OPT 'OUT' would overwrite WHAT: expected another
+ * file", else EXIT_OK. what names the input ("the replay being
+ * exported"). */
+int cmd_output_spares(const char *cmd, const char *opt, const char *out, const char *in,
+    const char *what);
+/* The same against what a scene reads: its file (when scene_file: a
+ * resumed run's scene is the replay's text) and its meshes' OBJ files. */
+int cmd_output_spares_scene(const char *cmd, const char *opt, const char *out,
+    const struct scene *sc, bool scene_file);
+/* An output opt that a format writes by seeking back (replays, PC2) and
+ * that cannot be (outfile_unseekable): EXIT_USAGE after saying so, else
+ * EXIT_OK. */
+int cmd_output_seeks(const char *cmd, const char *opt, const char *out);
+
 /* stepper_new, showing the stages of the setup on the standard error
  * when it is a terminal and the cloth has CMD_SETUP_SHOWN_NODES nodes or
  * more (the line is cleared when setup ends). */
 #define CMD_SETUP_SHOWN_NODES (1L << 18)
 struct stepper *cmd_stepper_new(const struct scene *sc, struct drape_err *err);
 
-/* The run length that --until T (> 0 when given) and --dt DT (> 0 when
- * given) make of the scene: at most SCENE_MAX_STEPS steps and
- * SCENE_MAX_FRAMES frames. EXIT_OK, or EXIT_USAGE after saying which
- * option is out of range. */
-int cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt);
+/* The run length that --until T (> 0 when given) and a step make of the
+ * scene: at most SCENE_MAX_STEPS steps and SCENE_MAX_FRAMES frames. The
+ * step is --dt DT when dt_given (DT > 0; 0 or less: the scene's), else dt
+ * is a step the user did not give (a replay's recorded one, > 0) or 0 for
+ * the scene's. EXIT_OK, or EXIT_USAGE after saying which option is out
+ * of range. */
+int cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt,
+    bool dt_given);
 
 #endif

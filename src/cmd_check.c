@@ -20,26 +20,40 @@ ends_with(const char *s, const char *tail)
 	return n >= k && strcmp(s + n - k, tail) == 0;
 }
 
+/* An audit its bound cut short (audit.h), said with what it had found. */
+static void
+say_cut(const char *path, const char *when, long candidates, long tests, long pairs,
+    size_t ntri)
+{
+	fprintf(stderr, "drape check: %s%s: the audit stopped at its bound for %zu triangles "
+	    "(%ld pairs of boxes compared, %ld exact tests: triangles lying on one another); %s\n",
+	    path, when, ntri, candidates, tests, pairs > 0 ? "the pairs counted are a lower "
+	    "bound" : "none intersected so far, which proves nothing");
+}
+
 static int
 check_obj(const char *path)
 {
 	struct mesh m;
 	struct drape_err err;
+	struct audit_result r;
 	int first[2];
-	long n;
 
 	if (mesh_load_obj(&m, path, &err) != 0) {
 		fprintf(stderr, "drape check: %s\n", err.msg);
 		return EXIT_USAGE;
 	}
-	n = audit_self_intersections(m.x, m.tri, m.ntri, first);
-	mesh_free(&m);
-	if (n < 0) {
+	if (audit_self(m.x, m.tri, m.ntri, first, &r) != 0) {
+		mesh_free(&m);
 		fprintf(stderr, "drape check: %s: out of memory\n", path);
 		return EXIT_RUNTIME;
 	}
-	printf("%s\tobj\t-\t-\t%ld\t-\n", path, n);
-	return n > 0 ? EXIT_FOUND : EXIT_OK;
+	printf("%s\tobj\t-\t-\t%ld\t-\n", path, r.pairs);
+	if (r.cut)
+		say_cut(path, "", r.candidates, r.tests, r.pairs, m.ntri);
+	mesh_free(&m);
+	/* cut short with nothing found is no answer: an error */
+	return r.pairs > 0 ? EXIT_FOUND : r.cut ? EXIT_RUNTIME : EXIT_OK;
 }
 
 static int
@@ -53,6 +67,7 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 	struct check_result r;
 	double frame, next = 0;
 	long k = 0, frames = 0, worst_pairs = 0, worst_inside = 0, bad_frames = 0;
+	bool cut = false;
 	int rc = EXIT_OK;
 
 	if (scene_load_set(&sc, path, sets, nsets, &err) != 0) {
@@ -74,6 +89,14 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 				break;
 			}
 			frames++;
+			if (r.cut) {
+				char when[64];
+
+				snprintf(when, sizeof when, " at t = %.6g s", rep.t);
+				say_cut(path, when, r.candidates, r.tests, r.pairs,
+				    stepper_network(st)->cl.ntri);
+				cut = true;
+			}
 			if (r.pairs > 0 || r.inside > 0) {
 				bad_frames++;
 				printf("%s\tt=%.6g\tstep=%ld\t-\t%ld\t%ld\n", path, rep.t, rep.step,
@@ -82,7 +105,7 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 			worst_pairs = r.pairs > worst_pairs ? r.pairs : worst_pairs;
 			worst_inside = r.inside > worst_inside ? r.inside : worst_inside;
 			k++;
-			next = (double)(k * every) * frame;
+			next = (double)k * (double)every * frame;
 		}
 		if (stepper_done(st))
 			break;
@@ -96,6 +119,8 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 		    worst_inside);
 	if (rc == EXIT_OK && bad_frames > 0)
 		rc = EXIT_FOUND;
+	else if (rc == EXIT_OK && cut)
+		rc = EXIT_RUNTIME;	/* a frame not audited whole, and nothing found */
 	stepper_free(st);
 	scene_free(&sc);
 	return rc;
@@ -111,17 +136,16 @@ check_options(int argc, char **argv, long *every, const char **sets, size_t *nse
 		{ "help", no_argument, NULL, 'h' },
 		{ NULL, 0, NULL, 0 },
 	};
-	char *end;
 	int ch, i;
 
 	optind = 1;
 	while ((ch = getopt_long(argc, argv, "e:h", longopts, NULL)) != -1) {
 		switch (ch) {
 		case 'e':
-			*every = strtol(optarg, &end, 10);
-			if (*optarg == '\0' || *end != '\0' || *every < 1) {
+			/* past SCENE_MAX_FRAMES it is every frame's first alone */
+			if (cmd_parse_long(optarg, 1, (long)SCENE_MAX_FRAMES, every) != 0) {
 				fprintf(stderr, "drape check: --every '%s': expected a whole number "
-				    "of 1 or more\n", optarg);
+				    "from 1 to %ld\n", optarg, (long)SCENE_MAX_FRAMES);
 				return EXIT_USAGE;
 			}
 			break;

@@ -52,16 +52,6 @@ gap_add(struct gap *g, const char *file, const struct replay_chunk *c, const cha
 	snprintf(g->why, sizeof g->why, "%s", why);
 }
 
-static int
-parse_long(const char *s, long *out)
-{
-	char *end;
-
-	errno = 0;
-	*out = strtol(s, &end, 10);
-	return errno == 0 && end != s && *end == '\0' && *out >= 0 ? 0 : -1;
-}
-
 int
 cmd_events(int argc, char **argv)
 {
@@ -87,7 +77,7 @@ cmd_events(int argc, char **argv)
 	while ((c = getopt_long(argc, argv, "h", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'n':
-			if (parse_long(optarg, &node) != 0 || node > INT_MAX)
+			if (cmd_parse_long(optarg, 0, INT_MAX, &node) != 0)
 				return bad("--node", optarg, "a node number from 0");
 			break;
 		case 't':
@@ -99,11 +89,11 @@ cmd_events(int argc, char **argv)
 				    "edge-edge or obstacle");
 			break;
 		case 'f':
-			if (parse_long(optarg, &from) != 0)
+			if (cmd_parse_long(optarg, 0, LONG_MAX, &from) != 0)
 				return bad("--from", optarg, "a step number from 0");
 			break;
 		case 'T':
-			if (parse_long(optarg, &to) != 0)
+			if (cmd_parse_long(optarg, 0, LONG_MAX, &to) != 0)
 				return bad("--to", optarg, "a step number from 0");
 			break;
 		case 'h':

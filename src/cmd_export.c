@@ -5,12 +5,14 @@
 #include <float.h>
 #include <getopt.h>
 #include <math.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "cmd.h"
 #include "obj.h"
+#include "outfile.h"
 #include "pc2.h"
 #include "replay.h"
 
@@ -34,13 +36,15 @@ write_obj_frame(const char *path, const float *x, const struct replay_meta *m,
 	return rc;
 }
 
-/* An exit status: EXIT_USAGE when the replay holds no frame that can be
- * exported (none intact, a chunk that passes its CRC but does not decode,
- * a frame time out of range), EXIT_RUNTIME when an output cannot be
- * written; what was being written is then removed. */
+/* The frames of replay r (read from in) into the outputs. An exit status:
+ * EXIT_USAGE when the replay holds no frame that can be exported (none
+ * intact, a chunk that passes its CRC but does not decode, a frame time
+ * out of range) or a frame of --obj-seq would overwrite in, EXIT_RUNTIME
+ * when an output cannot be written, EXIT_INTERRUPTED when a signal came
+ * (cmd_signal); what was being written is then removed. */
 static int
-export(const struct replay *r, const char *pc2, const char *obj, const char *seq,
-    struct drape_err *err)
+export(const struct replay *r, const char *in, const char *pc2, const char *obj,
+    const char *seq, struct drape_err *err)
 {
 	struct pc2_writer pw;
 	struct replay_frames fr;
@@ -59,6 +63,15 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 		}
 		for (k = 0; k < fr.count; k++, frame++) {
 			const float *x = fr.x + k * n3;
+
+			/* a signal: the PC2 begun is removed, the whole files
+			 * written so far stay */
+			if (cmd_signal) {
+				err_set(err, "%s at frame %zu: the files begun were removed",
+				    cmd_signal_word(cmd_signal), frame);
+				rc = EXIT_INTERRUPTED;
+				goto fail_fr;
+			}
 
 			if (first) {
 				double start = fr.t[k] * m->output_rate;
@@ -85,6 +98,12 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 					err_set(err, "%s: path too long", seq);
 					goto fail_fr;
 				}
+				if (outfile_same(path, in)) {
+					err_set(err, "--obj-seq %s would overwrite it: expected another "
+					    "directory", path);
+					rc = EXIT_USAGE;
+					goto fail_fr;
+				}
 				if (write_obj_frame(path, x, m, err) != 0)
 					goto fail_fr;
 			}
@@ -95,6 +114,12 @@ export(const struct replay *r, const char *pc2, const char *obj, const char *seq
 		err_set(err, "no intact frame to export");
 		return EXIT_USAGE;
 	}
+	if (cmd_signal) {
+		rc = EXIT_INTERRUPTED;
+		err_set(err, "%s after the last frame: the files begun were removed",
+		    cmd_signal_word(cmd_signal));
+		goto fail;
+	}
 	if (open_pc2 && pc2_close(&pw, err) != 0)
 		return EXIT_RUNTIME;
 	return EXIT_OK;
@@ -103,6 +128,12 @@ fail_fr:
 fail:
 	if (open_pc2)
 		pc2_abort(&pw);
+	/* a write a signal cut (a FIFO's open) is the signal's doing */
+	if (cmd_signal && rc != EXIT_INTERRUPTED) {
+		err_set(err, "%s at frame %zu: the files begun were removed",
+		    cmd_signal_word(cmd_signal), frame);
+		rc = EXIT_INTERRUPTED;
+	}
 	return rc;
 }
 
@@ -154,10 +185,20 @@ cmd_export(int argc, char **argv)
 		    "--obj-seq DIR\n");
 		return EXIT_USAGE;
 	}
+	/* before anything is written */
+	if (cmd_output_seeks("export", "--pc2", pc2) != EXIT_OK ||
+	    cmd_output_spares("export", "--pc2", pc2, argv[optind], "the replay being exported") !=
+	    EXIT_OK ||
+	    cmd_output_spares("export", "--obj", obj, argv[optind], "the replay being exported") !=
+	    EXIT_OK)
+		return EXIT_USAGE;
 	if (seq != NULL && mkdir(seq, 0777) != 0 && errno != EEXIST) {
 		fprintf(stderr, "drape export: %s: cannot create: %s\n", seq, strerror(errno));
 		return EXIT_RUNTIME;
 	}
+	/* from here, temporary files (the PC2's, each OBJ's) exist: a signal
+	 * is let out once they are gone */
+	cmd_catch_signals();
 	if (replay_open(&r, argv[optind], &err) != 0) {
 		fprintf(stderr, "drape export: %s\n", err.msg);
 		return EXIT_USAGE;
@@ -165,7 +206,7 @@ cmd_export(int argc, char **argv)
 	if (r.cut || r.nbad > 0)
 		fprintf(stderr, "drape export: %s: %s; exporting the %zu intact frames\n",
 		    argv[optind], r.cut ? "cut short" : "some chunks have a bad CRC", r.nframes);
-	if ((rc = export(&r, pc2, obj, seq, &err)) != EXIT_OK)
+	if ((rc = export(&r, argv[optind], pc2, obj, seq, &err)) != EXIT_OK)
 		fprintf(stderr, "drape export: %s: %s\n", argv[optind], err.msg);
 	replay_close(&r);
 	return rc;

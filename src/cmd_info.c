@@ -56,6 +56,21 @@ lossy_precision(const struct replay *r)
 	return 0;
 }
 
+/* How the recorded run ended, when the header says it stopped early. */
+static const char *
+run_end(uint32_t flags)
+{
+	if (!(flags & REPLAY_CLOSED))
+		return "";
+	if (flags & REPLAY_END_ERROR)
+		return "; the run ended there on an error";
+	if (flags & REPLAY_END_BLOWUP)
+		return "; the run ended there in a blow-up";
+	if (flags & REPLAY_END_INTERRUPTED)
+		return "; the run ended there on a signal";
+	return "";
+}
+
 int
 cmd_info(int argc, char **argv)
 {
@@ -93,9 +108,9 @@ cmd_info(int argc, char **argv)
 	precision = lossy_precision(&r);
 	node_frames = (double)m->nodes * (double)(r.nframes > 0 ? r.nframes : 1);
 
-	printf("replay       %s (version %u, %s)\n", argv[1], r.hdr.version,
+	printf("replay       %s (version %u, %s%s)\n", argv[1], r.hdr.version,
 	    !(r.hdr.flags & REPLAY_CLOSED) ? "not closed: the run was cut short" :
-	    r.cut ? "closed cleanly, then cut short" : "closed cleanly");
+	    r.cut ? "closed cleanly, then cut short" : "closed cleanly", run_end(r.hdr.flags));
 	printf("scene        %s (recorded from %s by drape %s)\n", m->name, m->path, m->version);
 	printf("nodes        %u (%u triangles)\n", m->nodes, m->triangles);
 	printf("options      --until %.9g --integrator %s --dt ", m->duration,

@@ -16,7 +16,6 @@
 #include <unistd.h>
 
 #include "cmd.h"
-#include "outfile.h"
 #include "png.h"
 #include "replay.h"
 #include "source.h"
@@ -247,6 +246,79 @@ run_gnuplot(const char *prog, const char *script, size_t len)
 	return EXIT_OK;
 }
 
+/* An empty file of ours in $TMPDIR (else /tmp) for gnuplot's PNG, its
+ * name malloc'd; NULL with errno. */
+static char *
+plot_tmp_name(void)
+{
+	const char *d = getenv("TMPDIR");
+	size_t n;
+	char *tmp;
+	int fd;
+
+	if (d == NULL || d[0] == '\0')
+		d = "/tmp";
+	n = strlen(d) + 32;
+	if ((tmp = malloc(n)) == NULL)
+		return NULL;
+	snprintf(tmp, n, "%s/drape-plot-XXXXXX", d);
+	if ((fd = mkstemp(tmp)) < 0) {
+		free(tmp);
+		return NULL;
+	}
+	close(fd);
+	return tmp;
+}
+
+/* gnuplot's PNG in tmp, checked whole and written to png (whole or not at
+ * all, file_write_atomic). gnuplot exits 0 when its own write fails (a
+ * full disk): a file cut short shows it, its IEND chunk gone. An exit
+ * status. */
+static int
+publish(const char *tmp, const char *png)
+{
+	struct drape_err err;
+	unsigned char *buf = NULL;
+	size_t len = 0, cap = 0, got;
+	FILE *f = fopen(tmp, "rb");
+	int rc = EXIT_OK;
+
+	if (f == NULL) {
+		fprintf(stderr, "drape plot: %s: %s\n", tmp, strerror(errno));
+		return EXIT_RUNTIME;
+	}
+	do {
+		if (len == cap) {
+			unsigned char *nb = realloc(buf, cap = cap ? 2 * cap : 1 << 17);
+
+			if (nb == NULL) {
+				fprintf(stderr, "drape plot: out of memory\n");
+				free(buf);
+				fclose(f);
+				return EXIT_RUNTIME;
+			}
+			buf = nb;
+		}
+		got = fread(buf + len, 1, cap - len, f);
+		len += got;
+	} while (got > 0);
+	if (ferror(f)) {
+		fprintf(stderr, "drape plot: %s: read error\n", tmp);
+		rc = EXIT_RUNTIME;
+	} else if (!png_is_whole(buf, len)) {
+		fprintf(stderr, "drape plot: --png %s: gnuplot wrote %zu bytes, not a whole PNG "
+		    "(its end, the IEND chunk, is missing: a full disk?); %s is as it was\n", png,
+		    len, png);
+		rc = EXIT_RUNTIME;
+	} else if (file_write_atomic(png, buf, len, &err) != 0) {
+		fprintf(stderr, "drape plot: --png %s\n", err.msg);
+		rc = EXIT_RUNTIME;
+	}
+	fclose(f);
+	free(buf);
+	return rc;
+}
+
 int
 cmd_plot(int argc, char **argv)
 {
@@ -286,6 +358,8 @@ cmd_plot(int argc, char **argv)
 		return EXIT_USAGE;
 	}
 	path = argv[optind];
+	if (cmd_output_spares("plot", "--png", png, path, "the replay being plotted") != EXIT_OK)
+		return EXIT_USAGE;
 	if (!find_gnuplot(prog, sizeof prog)) {
 		fprintf(stderr, "drape plot: gnuplot not found (%s): drape plot draws its charts "
 		    "with it (on Debian: apt-get install gnuplot-nox)\n",
@@ -299,26 +373,16 @@ cmd_plot(int argc, char **argv)
 	}
 	if ((rc = energy_block(f, path, title, sizeof title)) == EXIT_OK)
 		rc = steps_block(f, path, &nsteps, &passes);
-	if (rc == EXIT_OK && png != NULL && outfile_is_special(png)) {
-		charts(f, true, png, title, nsteps, passes);	/* /dev/null: no rename over it */
-	} else if (rc == EXIT_OK && png != NULL) {
-		/* into a temporary file beside it, renamed when whole */
-		size_t n = strlen(png) + 16;
-		int fd;
-
-		if ((tmp = malloc(n)) == NULL) {
+	if (rc == EXIT_OK && png != NULL) {
+		/* gnuplot draws into a file of ours, checked before it is
+		 * published; a signal lets it out only once it is removed */
+		cmd_catch_signals();
+		if ((tmp = plot_tmp_name()) == NULL) {
+			fprintf(stderr, "drape plot: --png %s: a temporary file: %s\n", png,
+			    strerror(errno));
 			rc = EXIT_RUNTIME;
 		} else {
-			snprintf(tmp, n, "%s.tmp-XXXXXX", png);
-			if ((fd = mkstemp(tmp)) < 0) {
-				fprintf(stderr, "drape plot: --png %s: %s\n", png, strerror(errno));
-				free(tmp);
-				tmp = NULL;
-				rc = EXIT_RUNTIME;
-			} else {
-				close(fd);
-				charts(f, true, tmp, title, nsteps, passes);
-			}
+			charts(f, true, tmp, title, nsteps, passes);
 		}
 	}
 	if (rc == EXIT_OK)
@@ -330,15 +394,14 @@ cmd_plot(int argc, char **argv)
 	if (rc == EXIT_OK)
 		rc = run_gnuplot(prog, script, len);
 	if (tmp != NULL) {
-		mode_t mask = umask(0);
-
-		umask(mask);
-		if (rc == EXIT_OK && (chmod(tmp, 0666 & ~mask) != 0 || rename(tmp, png) != 0)) {
-			fprintf(stderr, "drape plot: %s: %s\n", png, strerror(errno));
-			rc = EXIT_RUNTIME;
+		if (cmd_signal) {
+			fprintf(stderr, "drape plot: %s: --png %s not written\n",
+			    cmd_signal_word(cmd_signal), png);
+			rc = EXIT_INTERRUPTED;
 		}
-		if (rc != EXIT_OK)
-			unlink(tmp);
+		if (rc == EXIT_OK)
+			rc = publish(tmp, png);
+		unlink(tmp);
 		free(tmp);
 	}
 	if (rc == EXIT_OK && png != NULL)

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <math.h>
 #include <getopt.h>
+#include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +19,7 @@
 #include "clock.h"
 #include "cmd.h"
 #include "obj.h"
+#include "outfile.h"
 #include "record.h"
 #include "replay.h"
 #include "replay_run.h"
@@ -56,12 +58,6 @@ catch_signals(void)
 	signal(SIGPIPE, SIG_IGN);
 }
 
-static const char *
-signal_word(int sig)
-{
-	return sig == SIGINT ? "interrupted" : sig == SIGHUP ? "hung up" : "terminated";
-}
-
 struct run_opts {
 	const char *scene, *final_obj, *record, *resume;
 	const char *trace;	/* --trace: a TSV row per output frame */
@@ -97,7 +93,7 @@ bad_option(const char *opt, const char *val, const char *what)
 static int
 take_option(struct run_opts *o, int c, const char *arg)
 {
-	char why[200], *end;
+	char why[200];
 	enum integrator_kind k;
 
 	switch (c) {
@@ -149,10 +145,9 @@ take_option(struct run_opts *o, int c, const char *arg)
 			return bad_option("--dt", arg, "'auto' or a time greater than 0");
 		break;
 	case 'k':
-		errno = 0;
-		o->keyframe_every = strtol(arg, &end, 10);
-		if (errno != 0 || end == arg || *end != '\0' || o->keyframe_every < 1)
-			return bad_option("--keyframe-every", arg, "a whole number of steps from 1");
+		if (cmd_parse_long(arg, 1, (long)SCENE_MAX_STEPS, &o->keyframe_every) != 0)
+			return bad_option("--keyframe-every", arg, "a whole number of steps from 1 "
+			    "to 1000000000");
 		break;
 	case 'E':
 		if (strcmp(arg, "stored") == 0 || strcmp(arg, "digest") == 0)
@@ -218,6 +213,10 @@ parse_options(int argc, char **argv, struct run_opts *o)
 		if ((rc = take_option(o, c, optarg)) != EXIT_OK)
 			return rc;
 	}
+	/* before anything is read or run: a FIFO would block, then get a
+	 * replay with no header */
+	if (cmd_output_seeks("run", "--record", o->record) != EXIT_OK)
+		return EXIT_USAGE;
 	if (o->resume == NULL) {
 		if (optind != argc - 1) {
 			fprintf(stderr, "drape run: expected one scene file\n");
@@ -241,33 +240,16 @@ static int
 parse_resume(const char *arg, char **file, long *step)
 {
 	const char *at = strrchr(arg, '@');
-	char *end;
 	size_t len = strlen(arg);
 
 	*step = -1;
-	if (at != NULL && at[1] != '\0') {
-		errno = 0;
-		*step = strtol(at + 1, &end, 10);
-		if (errno == 0 && *end == '\0' && *step >= 0)
-			len = (size_t)(at - arg);
-		else
-			*step = -1;
-	}
+	if (at != NULL && cmd_parse_long(at + 1, 0, LONG_MAX, step) == 0)
+		len = (size_t)(at - arg);
 	if ((*file = malloc(len + 1)) == NULL)
 		return -1;
 	memcpy(*file, arg, len);
 	(*file)[len] = '\0';
 	return 0;
-}
-
-/* 1 if both paths name one existing file. */
-static int
-same_file(const char *a, const char *b)
-{
-	struct stat sa, sb;
-
-	return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-	    sa.st_ino == sb.st_ino;
 }
 
 /* The scene and options of a replay, and the run at its last keyframe at
@@ -287,7 +269,7 @@ open_resumed(const struct run_opts *o, const char *file, long step, struct scene
 	}
 	if (replay_scene(&rp, file, o->until, sc, &err) != 0) {
 		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
-	} else if (cmd_check_run_length("run", sc, o->until, rp.meta.dt_set) != EXIT_OK) {
+	} else if (cmd_check_run_length("run", sc, o->until, rp.meta.dt_set, false) != EXIT_OK) {
 		scene_free(sc);
 	} else if ((*st = replay_resume(&rp, file, sc, step, &err)) == NULL) {
 		fprintf(stderr, "drape run: --resume: %s\n", err.msg);
@@ -309,6 +291,31 @@ open_resumed(const struct run_opts *o, const char *file, long step, struct scene
 	return rc;
 }
 
+/* The outputs against one input, said as what (cmd_output_spares). */
+static int
+outputs_spare(const struct run_opts *o, const char *in, const char *what)
+{
+	if (cmd_output_spares("run", "--record", o->record, in, what) != EXIT_OK ||
+	    cmd_output_spares("run", "--final-obj", o->final_obj, in, what) != EXIT_OK ||
+	    cmd_output_spares("run", "--trace", o->trace, in, what) != EXIT_OK)
+		return EXIT_USAGE;
+	return EXIT_OK;
+}
+
+/* The outputs against what the scene reads (a resumed run's scene is the
+ * replay's text: its file is not read). */
+static int
+outputs_spare_scene(const struct run_opts *o, const struct scene *sc)
+{
+	bool file = o->resume == NULL;
+
+	if (cmd_output_spares_scene("run", "--record", o->record, sc, file) != EXIT_OK ||
+	    cmd_output_spares_scene("run", "--final-obj", o->final_obj, sc, file) != EXIT_OK ||
+	    cmd_output_spares_scene("run", "--trace", o->trace, sc, file) != EXIT_OK)
+		return EXIT_USAGE;
+	return EXIT_OK;
+}
+
 /* --resume: its own checks on the options, then open_resumed. */
 static int
 resume(struct run_opts *o, struct scene *sc, struct stepper **st)
@@ -326,9 +333,7 @@ resume(struct run_opts *o, struct scene *sc, struct stepper **st)
 		fprintf(stderr, "drape run: out of memory\n");
 		return EXIT_RUNTIME;
 	}
-	if (o->record != NULL && same_file(file, o->record)) {
-		fprintf(stderr, "drape run: --record '%s' would overwrite the replay being resumed: "
-		    "expected another file\n", o->record);
+	if (outputs_spare(o, file, "the replay being resumed") != EXIT_OK) {
 		free(file);
 		return EXIT_USAGE;
 	}
@@ -348,7 +353,7 @@ open_scene(const struct run_opts *o, struct scene *sc, struct stepper **st)
 		fprintf(stderr, "drape: %s\n", err.msg);
 		return EXIT_USAGE;
 	}
-	if (cmd_check_run_length("run", sc, o->until, o->dt) != EXIT_OK) {
+	if (cmd_check_run_length("run", sc, o->until, o->dt, true) != EXIT_OK) {
 		scene_free(sc);
 		return EXIT_USAGE;
 	}
@@ -413,6 +418,11 @@ run_tui(struct stepper *st, const struct run_opts *o)
 	tui_run(&src, &o->tui, &res);
 	if ((rec = src.recording(src.ctx, NULL)) != NULL && (name = strdup(rec)) == NULL)
 		rc = EXIT_RUNTIME;
+	/* the replay's header says how the run ended, if it did early */
+	if (rec != NULL)
+		record_set_end(&lv.rec, res.blown_up ? (res.run_error ? REPLAY_END_ERROR :
+		    REPLAY_END_BLOWUP) : res.end == TUI_SIGNAL ? REPLAY_END_INTERRUPTED :
+		    res.end == TUI_ERROR ? REPLAY_END_ERROR : 0);
 	if (rec != NULL && src.record(src.ctx, NULL, why, sizeof why) != 0) {
 		fprintf(stderr, "drape: %s\n", why);
 		rc = EXIT_RUNTIME;
@@ -447,7 +457,8 @@ progress(const struct stepper *st, double wall)
  * the locked nodes (stepper.h, struct lock_stats), the most and the
  * corrections since the row before, for charts of a run's course. */
 struct trace {
-	FILE *f;
+	struct outfile out;	/* written whole or not at all */
+	FILE *f;		/* out's */
 	double frame, next;	/* s: the output interval, and the next row's time */
 	long k;			/* rows written */
 	int most;		/* the most nodes locked at a step since the last row */
@@ -488,16 +499,18 @@ trace_step(struct trace *tr, const struct stepper *st)
 		trace_row(tr, st);
 }
 
+/* 0, or -1 after saying why, also in err. */
 static int
-trace_open(struct trace *tr, const char *path, const struct stepper *st)
+trace_open(struct trace *tr, const char *path, const struct stepper *st, struct drape_err *err)
 {
 	struct stepper_report r;
 
 	memset(tr, 0, sizeof *tr);
-	if ((tr->f = fopen(path, "w")) == NULL) {
-		fprintf(stderr, "drape: --trace %s: %s\n", path, strerror(errno));
+	if (outfile_open(&tr->out, path, err) != 0) {
+		fprintf(stderr, "drape: --trace: %s\n", err->msg);
 		return -1;
 	}
+	tr->f = tr->out.f;
 	stepper_report(st, &r);
 	tr->frame = 1 / stepper_scene(st)->output_rate;
 	tr->k = (long)floor(r.t / tr->frame + 1e-9);
@@ -507,14 +520,51 @@ trace_open(struct trace *tr, const char *path, const struct stepper *st)
 	return 0;
 }
 
+/* The trace into place, whole; 0, or -1 after saying why, also in err
+ * (the file at the path is then as it was: a full disk left it empty). */
 static int
-trace_close(struct trace *tr, const char *path)
+trace_close(struct trace *tr, struct drape_err *err)
 {
 	if (tr->f == NULL)
 		return 0;
-	if (ferror(tr->f) | (fclose(tr->f) != 0)) {
-		fprintf(stderr, "drape: --trace %s: cannot write it\n", path);
+	tr->f = NULL;
+	if (outfile_close(&tr->out, err) != 0) {
+		fprintf(stderr, "drape: --trace: %s\n", err->msg);
 		return -1;
+	}
+	return 0;
+}
+
+/* An output that failed (the replay, the trace, the final OBJ), for the
+ * run's record: an error at the step the run is at, with msg as its
+ * reason (cut to fit), unless the run had failed already. */
+static void
+output_failed(struct run_end *end, const struct stepper *st, const char *msg)
+{
+	struct stepper_report r;
+	size_t n = strlen(msg);
+
+	if (end->failed)
+		return;
+	stepper_report(st, &r);
+	end->f = (struct step_failure){ STEP_ERROR, r.step, r.t, -1, -1, -1, "" };
+	if (n >= sizeof end->f.why)
+		n = sizeof end->f.why - 1;
+	memcpy(end->f.why, msg, n);
+	end->f.why[n] = '\0';
+	end->failed = true;
+	end->outcome = RUN_ERROR;
+}
+
+/* The replay's header says how the run ended (replay.h REPLAY_END_*). */
+static uint32_t
+replay_end_of(enum run_outcome outcome)
+{
+	switch (outcome) {
+	case RUN_COMPLETED: return 0;
+	case RUN_BLOWUP: return REPLAY_END_BLOWUP;
+	case RUN_ERROR: return REPLAY_END_ERROR;
+	case RUN_INTERRUPTED: return REPLAY_END_INTERRUPTED;
 	}
 	return 0;
 }
@@ -555,11 +605,7 @@ step_headless(struct stepper *st, struct recorder *rec, struct trace *tr, bool t
 				fputc('\n', stderr);
 			fprintf(stderr, "drape: %s; the run stops at step %ld, and the replay holds "
 			    "what was written\n", err.msg, r.step);
-			*f = (struct step_failure){ STEP_ERROR, r.step, r.t, -1, -1, -1, "" };
-			memcpy(f->why, err.msg, sizeof f->why - 1);	/* cut to fit */
-			f->why[sizeof f->why - 1] = '\0';
-			end->failed = true;
-			end->outcome = RUN_ERROR;
+			output_failed(end, st, err.msg);
 			return EXIT_RUNTIME;
 		}
 		if (tty && clock_seconds() - last > 0.25) {
@@ -583,15 +629,19 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	double t0;
 	int rc;
 
+	/* the run's record says an output that could not be opened: no
+	 * step was taken, and the outcome is an error, not "completed" */
+	if (o->trace != NULL && trace_open(&tr, o->trace, st, &err) != 0) {
+		output_failed(end, st, err.msg);
+		return EXIT_RUNTIME;
+	}
 	if (o->record != NULL && record_open(&rec, o->record, st, o->keyframe_every > 0 ?
 	    o->keyframe_every : record_default_keyframes(st), o->precision, o->events_stored,
 	    &err) != 0) {
 		fprintf(stderr, "drape: --record: %s\n", err.msg);
-		return EXIT_RUNTIME;
-	}
-	if (o->trace != NULL && trace_open(&tr, o->trace, st) != 0) {
-		if (o->record != NULL)
-			record_close(&rec, st, &err);
+		output_failed(end, st, err.msg);
+		if (o->trace != NULL)
+			outfile_abort(&tr.out);
 		return EXIT_RUNTIME;
 	}
 	catch_signals();
@@ -599,23 +649,30 @@ run_headless(struct stepper *st, const struct run_opts *o, struct run_end *end)
 	t0 = clock_seconds();
 	rc = step_headless(st, o->record != NULL ? &rec : NULL, o->trace != NULL ? &tr : NULL,
 	    tty, end);
-	if (trace_close(&tr, o->trace) != 0 && rc == EXIT_OK)
+	if (trace_close(&tr, &err) != 0 && rc == EXIT_OK) {
+		output_failed(end, st, err.msg);
 		rc = EXIT_RUNTIME;
+	}
 	if (tty)
 		fputs("\r\033[K", stderr);
 	if (interrupted && rc == EXIT_OK) {
 		stepper_report(st, &r);
 		/* say whether a step was under way, so that a user (and test_cli,
 		 * without a clock) can tell it was given up, not finished */
-		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)%s\n", signal_word(interrupted),
+		fprintf(stderr, "drape: %s at step %ld (t = %.6g s)%s\n", cmd_signal_word(interrupted),
 		    r.step, r.t, end->given_up ? "; the step under way was given up" : "");
 		rc = EXIT_INTERRUPTED;
 		end->outcome = RUN_INTERRUPTED;
 	}
-	if (o->record != NULL && record_close(&rec, st, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
-		if (rc == EXIT_OK)
-			rc = EXIT_RUNTIME;
+	if (o->record != NULL) {
+		record_set_end(&rec, replay_end_of(end->outcome));
+		if (record_close(&rec, st, &err) != 0) {
+			fprintf(stderr, "drape: %s\n", err.msg);
+			if (rc == EXIT_OK) {
+				output_failed(end, st, err.msg);
+				rc = EXIT_RUNTIME;
+			}
+		}
 	}
 	end->wall = clock_seconds() - t0;
 	return rc;
@@ -647,16 +704,16 @@ print_summary(const struct stepper *st, const struct run_opts *o, const struct r
 	return rc;
 }
 
+/* --final-obj; an exit status, said and in err when it fails. */
 static int
-write_final(const struct stepper *st, const char *path)
+write_final(const struct stepper *st, const char *path, struct drape_err *err)
 {
 	const struct cloth *cl = &stepper_network(st)->cl;
-	struct drape_err err;
 
 	if (path == NULL)
 		return EXIT_OK;
-	if (obj_write(path, stepper_x(st), cl->n, cl->tri, cl->ntri, &err) != 0) {
-		fprintf(stderr, "drape: %s\n", err.msg);
+	if (obj_write(path, stepper_x(st), cl->n, cl->tri, cl->ntri, err) != 0) {
+		fprintf(stderr, "drape: %s\n", err->msg);
 		return EXIT_RUNTIME;
 	}
 	return EXIT_OK;
@@ -680,6 +737,13 @@ cmd_run(int argc, char **argv)
 		free(o.sets);
 		return rc;
 	}
+	/* an output over an input: refused before anything is written */
+	if (outputs_spare_scene(&o, &sc) != EXIT_OK) {
+		stepper_free(st);
+		scene_free(&sc);
+		free(o.sets);
+		return EXIT_USAGE;
+	}
 	if (!o.headless && !(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
 		fprintf(stderr, "drape: not a terminal: running headless\n");
 		o.headless = true;
@@ -687,9 +751,13 @@ cmd_run(int argc, char **argv)
 	rc = o.headless ? run_headless(st, &o, &end) : run_tui(st, &o);
 	/* a run stopped by a signal is at a consistent step too */
 	if (rc == EXIT_OK || rc == EXIT_INTERRUPTED || rc > 128) {
-		int w = write_final(st, o.final_obj);
+		struct drape_err err;
+		int w = write_final(st, o.final_obj, &err);
 
-		rc = rc == EXIT_OK ? w : rc;
+		if (rc == EXIT_OK && w != EXIT_OK) {
+			output_failed(&end, st, err.msg);
+			rc = w;
+		}
 	}
 	if (o.headless)
 		rc = print_summary(st, &o, &end, rc);

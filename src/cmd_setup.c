@@ -37,19 +37,24 @@ cmd_stepper_new(const struct scene *sc, struct drape_err *err)
 }
 
 int
-cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt)
+cmd_check_run_length(const char *cmd, const struct scene *sc, double until, double dt,
+    bool dt_given)
 {
 	double duration = until > 0 ? until : sc->duration, step = dt > 0 ? dt : sc->dt;
 
 	if (step > 0 && !(scene_steps(duration, step) <= SCENE_MAX_STEPS)) {
-		if (dt > 0)
+		if (dt_given && dt > 0)
 			fprintf(stderr, "drape %s: --dt %g s: expected a step that covers the "
 			    "duration (%g s) in at most %.0e steps (it takes %.3g)\n", cmd, dt,
 			    duration, SCENE_MAX_STEPS, scene_steps(duration, step));
-		else
+		else if (until > 0)
 			fprintf(stderr, "drape %s: --until %g s: expected at most %.0e steps of "
-			    "%g s (it takes %.3g)\n", cmd, until, SCENE_MAX_STEPS, step,
-			    scene_steps(duration, step));
+			    "%g s%s (it takes %.3g)\n", cmd, until, SCENE_MAX_STEPS, step,
+			    dt > 0 ? ", the recorded step" : "", scene_steps(duration, step));
+		else	/* a replay's own duration and step, which its writer kept in bounds */
+			fprintf(stderr, "drape %s: the recorded step of %g s takes %.3g steps to "
+			    "cover the duration (%g s); expected at most %.0e\n", cmd, step,
+			    scene_steps(duration, step), duration, SCENE_MAX_STEPS);
 		return EXIT_USAGE;
 	}
 	if (until > 0 && !(scene_frames(until, sc->output_rate) <= SCENE_MAX_FRAMES)) {

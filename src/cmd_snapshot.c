@@ -6,6 +6,7 @@
  * of input are read through a source (source.h), as the TUI reads them. */
 #include <errno.h>
 #include <getopt.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -507,6 +508,12 @@ snapshot_png(struct snapshot *sn)
 
 	if ((rc = check_writable(sn->png)) != EXIT_OK)
 		return rc;
+	/* the input, and for a scene its meshes: a picture over them would
+	 * destroy them */
+	if (cmd_output_spares("snapshot", "--png", sn->png, sn->path, sn->replay ? "the replay" :
+	    "the scene") != EXIT_OK || (!sn->replay && cmd_output_spares_scene("snapshot", "--png",
+	    sn->png, &sn->sc, false) != EXIT_OK))
+		return EXIT_USAGE;
 	if (sn->ntargets == 0 && (rc = add_target(sn, false, 0, 0)) != EXIT_OK)
 		return rc;
 	qsort(sn->targets, sn->ntargets, sizeof *sn->targets, target_order);
@@ -597,19 +604,39 @@ add_frames(struct snapshot *sn)
 }
 
 /* One option's value into sn; an exit status. */
+/* WxH, each from 1 to PICTURE_MAX_SIDE (the text's bound is checked later);
+ * 0, or -1. */
+static int
+parse_size(const char *arg, int *w, int *h)
+{
+	const char *x = strchr(arg, 'x');
+	char side[32];
+	long lw, lh;
+
+	if (x == NULL || (size_t)(x - arg) >= sizeof side)
+		return -1;
+	memcpy(side, arg, (size_t)(x - arg));
+	side[x - arg] = '\0';
+	if (cmd_parse_long(side, 1, PICTURE_MAX_SIDE, &lw) != 0 ||
+	    cmd_parse_long(x + 1, 1, PICTURE_MAX_SIDE, &lh) != 0)
+		return -1;
+	*w = (int)lw;
+	*h = (int)lh;
+	return 0;
+}
+
 static int
 take_option(struct snapshot *sn, int c, const char *arg)
 {
-	char *end, tail, why[160];
+	char *end, why[160];
 	long steps;
 	double t;
 	int w = 0, h = 0;
 
 	switch (c) {
 	case 's':
-		steps = strtol(arg, &end, 10);
 		sn->have_step = true;
-		if (end == arg || *end != '\0' || steps < 0)
+		if (cmd_parse_long(arg, 0, LONG_MAX, &steps) != 0)
 			return bad("--step", arg, "a whole number from 0");
 		return add_target(sn, false, steps, 0);
 	case 't':
@@ -622,8 +649,8 @@ take_option(struct snapshot *sn, int c, const char *arg)
 			return bad("--view", arg, "front, side, top or iso");
 		return EXIT_OK;
 	case 'z':
-		if (sscanf(arg, "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 ||
-		    w > PICTURE_MAX_SIDE || h > PICTURE_MAX_SIDE)
+		/* not sscanf's %d, whose overflow is undefined */
+		if (parse_size(arg, &w, &h) != 0)
 			return bad("--size", arg, "WxH, as 80x24 (characters) or 480x360 "
 			    "(pixels, with --png)");
 		sn->w = w;
@@ -650,8 +677,7 @@ take_option(struct snapshot *sn, int c, const char *arg)
 		sn->strip = true;
 		return parse_strip(sn, arg);
 	case 'F':
-		sn->frames = strtol(arg, &end, 10);
-		if (end == arg || *end != '\0' || sn->frames < 2 || sn->frames > PICTURE_MAX_FRAMES)
+		if (cmd_parse_long(arg, 2, PICTURE_MAX_FRAMES, &sn->frames) != 0)
 			return bad("--frames", arg, "a whole number of frames from 2 to 64");
 		return EXIT_OK;
 	case 'c':

@@ -1,5 +1,7 @@
 /* obstacle.c: signed distances, bounds and checks of the obstacles. */
+#include <float.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "obstacle.h"
 
@@ -356,9 +358,11 @@ obstacle_check(struct obstacle *o, struct drape_err *err)
 		/* by the largest component first, so that no square under- or
 		 * overflows */
 		big = fmax(fabs(o->normal.x), fmax(fabs(o->normal.y), fabs(o->normal.z)));
-		if (!finite3(o->normal) || !(big > 0)) {
-			err_set(err, "normal: expected a finite non-zero vector, got %g %g %g",
-			    o->normal.x, o->normal.y, o->normal.z);
+		/* not subnormal: 1 / big would overflow */
+		if (!finite3(o->normal) || !(big >= DBL_MIN)) {
+			err_set(err, "normal: expected a finite vector with a component of at least "
+			    "%g either way, got %g %g %g", DBL_MIN, o->normal.x, o->normal.y,
+			    o->normal.z);
 			return -1;
 		}
 		o->normal = v3_scale(o->normal, 1 / big);
@@ -395,4 +399,6 @@ void
 obstacle_free(struct obstacle *o)
 {
 	mesh_free(&o->mesh);
+	free(o->file);
+	o->file = NULL;
 }

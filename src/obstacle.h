@@ -30,6 +30,9 @@ struct obstacle {
 				 * disc on its pedestal) */
 	struct mesh mesh;	/* mesh: handled by the simulator's triangle narrow
 				 * phase, not analytically */
+	char *file;		/* mesh: the OBJ file it was read from, as opened
+				 * (an input, which no output may overwrite), or
+				 * NULL */
 };
 
 /* "plane", "box", "sphere", "disc", "mesh", then NULL; by kind. */

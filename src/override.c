@@ -31,6 +31,28 @@ struct out {
 	bool oom;
 };
 
+/* raw with its control characters but tabs written as C escapes (\n,
+ * \x1b), for a message on one line. */
+static void
+escaped(const char *raw, char *buf, size_t len)
+{
+	size_t o = 0;
+
+	for (; *raw != '\0' && o + 5 < len; raw++) {
+		unsigned char ch = (unsigned char)*raw;
+
+		if (ch == '\n')
+			o += (size_t)snprintf(buf + o, len - o, "\\n");
+		else if (ch == '\r')
+			o += (size_t)snprintf(buf + o, len - o, "\\r");
+		else if ((ch < 0x20 && ch != '\t') || ch == 0x7f)
+			o += (size_t)snprintf(buf + o, len - o, "\\x%02x", ch);
+		else
+			buf[o++] = (char)ch;
+	}
+	buf[o] = '\0';
+}
+
 static int
 parse_spec(struct spec *s, const char *raw, struct drape_err *err)
 {
@@ -40,6 +62,18 @@ parse_spec(struct spec *s, const char *raw, struct drape_err *err)
 	memset(s, 0, sizeof *s);
 	s->raw = raw;
 	s->header = SIZE_MAX;
+	/* the spec goes whole into the scene's text, as a comment on the line
+	 * it makes: a newline in it (a value pasted with its line's end) would
+	 * cut that line and shift every line after it */
+	for (v = raw; *v != '\0'; v++)
+		if (((unsigned char)*v < 0x20 && *v != '\t') || *v == 0x7f) {
+			char shown[300];
+
+			escaped(raw, shown, sizeof shown);
+			err_set(err, "--set %s: expected SECTION.KEY=VALUE on one line, without "
+			    "control characters (found one at byte %zu)", shown, (size_t)(v - raw) + 1);
+			return -1;
+		}
 	if ((s->buf = malloc(strlen(raw) + 1)) == NULL) {
 		err_set(err, "--set %s: out of memory", raw);
 		return -1;
@@ -71,18 +105,12 @@ parse_spec(struct spec *s, const char *raw, struct drape_err *err)
 		err_set(err, "--set %s: expected a value after '='", raw);
 		return -1;
 	}
-	for (v = s->value; *v != '\0'; v++) {
+	for (v = s->value; *v != '\0'; v++)
 		if (*v == '#') {
 			err_set(err, "--set %s: expected a value without '#' (in a scene it starts "
 			    "a comment)", raw);
 			return -1;
 		}
-		if ((unsigned char)*v < 0x20 && *v != '\t') {
-			err_set(err, "--set %s: expected a value on one line, without control "
-			    "characters", raw);
-			return -1;
-		}
-	}
 	return 0;
 malformed:
 	err_set(err, "--set '%s': expected SECTION.KEY=VALUE, such as cloth.bending_warp=5uN*m "

@@ -456,15 +456,16 @@ pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, str
 {
 	const struct cloth *cl = pb->fo->cl;
 	size_t n3 = 3 * (size_t)cl->n, i;
-	double hs, fold = 0, w2 = tension_omega2(pb, y), sub = pb->substep;
+	double hs, fold = 0, w2 = tension_omega2(pb, y), sub = pb->substep, want;
 	int nsub, s;
 
 	/* the two bounds' rows add: omega^2 at most the sum of theirs */
 	if (w2 > 0)
 		sub = fmin(sub, SUBSTEP_OMEGA / sqrt(w2 + pb->omega_bend * pb->omega_bend));
-	nsub = (int)ceil(h / sub * (1 - 1e-12));
-	if (nsub < 1)
-		nsub = 1;
+	/* counted in a double, bounded before it is an int (PBD_MAX_SUBSTEPS;
+	 * NaN, from a state already blown up, is one) */
+	want = ceil(h / sub * (1 - 1e-12));
+	nsub = want >= PBD_MAX_SUBSTEPS ? PBD_MAX_SUBSTEPS : want >= 1 ? (int)want : 1;
 	hs = h / nsub;
 	/* the fold limiter: a hinge at most as stiff as the substep's bound
 	 * hs omega < SUBSTEP_OMEGA allows, and at least twice its stiffness at

@@ -78,6 +78,13 @@ void pbd_free(struct pbd *pb);
  * for its yarns' tension). */
 double pbd_substep(const struct forces *fo, double dt);
 
+/* The most substeps one step takes, so that a step's work is bounded as
+ * rk4's four evaluations are: stepper_new refuses a scene whose own
+ * substep (pbd_substep) asks more, and a step whose yarns' tension asks
+ * more takes this many (the blow-up check answers a runaway). The shipped
+ * scenes take at most 70 (the cantilever). */
+#define PBD_MAX_SUBSTEPS 10000
+
 /* y (positions, velocities at t) to y_out at t + h; ct: the step's
  * contacts between parts of the cloth and with meshes (col's geometry),
  * held each substep, or NULL. Once the forces' stop flag is set

@@ -19,6 +19,7 @@ pc2_open(struct pc2_writer *w, const char *path, int points, float start, float 
     struct drape_err *err)
 {
 	size_t len = strlen(path) + 8;
+	const char *what;
 
 	memset(w, 0, sizeof *w);
 	if ((w->path = malloc(len)) == NULL || (w->tmp = malloc(len)) == NULL) {
@@ -35,9 +36,22 @@ pc2_open(struct pc2_writer *w, const char *path, int points, float start, float 
 	w->h.start = start;
 	w->h.rate = rate;
 	w->h.samples = 0;
+	/* the sample count is written last, at the start */
+	if ((what = outfile_unseekable(path)) != NULL) {
+		err_set(err, "%s: %s cannot hold a PC2 file, whose header is written last, at its "
+		    "start; expected a regular file", path, what);
+		release(w);
+		return -1;
+	}
 	if ((w->f = fopen(w->tmp, "wb")) == NULL) {
 		err_set(err, "%s: cannot create: %s", w->tmp, strerror(errno));
 		release(w);
+		return -1;
+	}
+	if (!outfile_seeks(w->f)) {
+		err_set(err, "%s: cannot seek in it (%s), and a PC2 file's header is written last, "
+		    "at its start; expected a regular file", path, strerror(errno));
+		pc2_abort(w);
 		return -1;
 	}
 	if (fwrite(&w->h, sizeof w->h, 1, w->f) != 1) {

@@ -154,6 +154,18 @@ oom:
 	return -1;
 }
 
+bool
+png_is_whole(const unsigned char *buf, size_t len)
+{
+	static const unsigned char sig[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
+	/* length 0, "IEND", its CRC */
+	static const unsigned char iend[12] = { 0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60,
+		0x82 };
+
+	return len >= sizeof sig + sizeof iend && memcmp(buf, sig, sizeof sig) == 0 &&
+	    memcmp(buf + len - sizeof iend, iend, sizeof iend) == 0;
+}
+
 int
 file_write_atomic(const char *path, const void *buf, size_t len, struct drape_err *err)
 {

@@ -6,6 +6,7 @@
 #ifndef DRAPE_PNG_H
 #define DRAPE_PNG_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "err.h"
@@ -21,6 +22,11 @@ int png_encode(const unsigned char *rgb, int w, int h, unsigned char **out, size
 /* png_encode written to path. Returns 0, or -1 with "path: why" in err
  * (then path is as it was). */
 int png_write(const char *path, const unsigned char *rgb, int w, int h, struct drape_err *err);
+
+/* Whether len bytes are a whole PNG file as far as its ends tell: the
+ * signature first and the IEND chunk last (a write cut short by a full
+ * disk keeps the first and loses the second). */
+bool png_is_whole(const unsigned char *buf, size_t len);
 
 /* Writes len bytes to path through a temporary file in its directory and a
  * rename, so that path is whole or untouched. Returns 0, or -1 with

@@ -84,7 +84,8 @@ record_open(struct recorder *rc, const char *path, const struct stepper *st,
 	if (keyframe(rc, st, err) != 0 ||
 	    replay_write_frame(&rc->w, r.step, r.t, stepper_x(st), err) != 0 ||
 	    replay_writer_flush(&rc->w, err) != 0) {
-		replay_writer_close(&rc->w, NULL);
+		/* a scene chunk and no frame (a full disk): nothing half-written */
+		replay_writer_discard(&rc->w);
 		return -1;
 	}
 	return 0;
@@ -125,6 +126,12 @@ record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err
 	if (r.step % rc->keyframe_every == 0)
 		return keyframe(rc, st, err);
 	return 0;
+}
+
+void
+record_set_end(struct recorder *rc, uint32_t how)
+{
+	rc->w.end = how & REPLAY_END_MASK;
 }
 
 int

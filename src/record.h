@@ -28,7 +28,8 @@ struct recorder {
 long record_default_keyframes(const struct stepper *st);
 
 /* Opens path and writes the scene, a keyframe and a frame of the current
- * state (step 0, or where a resumed run starts). precision: the frames'
+ * state (step 0, or where a resumed run starts); a file that cannot hold
+ * them is removed. precision: the frames'
  * grid step in m (replay.h's lossy frames), 0 for exact float32.
  * events_stored: every event written (--events stored), not only their
  * digest, from which a reader recomputes them (replay_events.h). */
@@ -40,6 +41,10 @@ void record_step_of(const struct stepper *st, struct replay_step *s);
 
 /* After each stepper_step that succeeded. */
 int record_step(struct recorder *rc, const struct stepper *st, struct drape_err *err);
+/* How the run ended, for the replay's header: REPLAY_END_INTERRUPTED,
+ * _BLOWUP or _ERROR, or 0 for a run that reached its end time (the
+ * default). Before record_close. */
+void record_set_end(struct recorder *rc, uint32_t how);
 /* A keyframe of the final state, then closes; frees rc even on error. */
 int record_close(struct recorder *rc, const struct stepper *st, struct drape_err *err);
 

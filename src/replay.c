@@ -13,6 +13,7 @@
 
 #include "clock.h"
 #include "frame_codec.h"
+#include "outfile.h"
 #include "replay.h"
 
 #define FRAMES_PER_CHUNK 25	/* half a second at 50 frames/s */
@@ -443,6 +444,7 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
     struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)m->nodes;
+	const char *what;
 
 	memset(w, 0, sizeof *w);
 	w->nodes = m->nodes;
@@ -471,8 +473,19 @@ replay_writer_open(struct replay_writer *w, const char *path, const struct repla
 	}
 	w->next_key = -1;
 	strcpy(w->path, path);
+	/* the header is written again at the close, at the file's start */
+	if ((what = outfile_unseekable(path)) != NULL) {
+		err_set(err, "%s: %s cannot hold a replay, whose header is written last, at its "
+		    "start; expected a regular file", path, what);
+		goto fail;
+	}
 	if ((w->f = fopen(path, "wb")) == NULL) {
 		err_set(err, "%s: cannot create: %s", path, strerror(errno));
+		goto fail;
+	}
+	if (!outfile_seeks(w->f)) {
+		err_set(err, "%s: cannot seek in it (%s), and a replay's header is written last, "
+		    "at its start; expected a regular file", path, strerror(errno));
 		goto fail;
 	}
 	if (write_header(w, 0, 0, err) != 0)
@@ -559,8 +572,8 @@ flush_frames(struct replay_writer *w, bool keep, struct drape_err *err)
 	return rc;
 }
 
-int
-replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
+static int
+write_frame_once(struct replay_writer *w, long step, double t, const double *x,
     struct drape_err *err)
 {
 	size_t n3 = 3 * (size_t)w->nodes, i;
@@ -594,8 +607,8 @@ replay_write_frame(struct replay_writer *w, long step, double t, const double *x
 	return flush_if_due(w, err);
 }
 
-int
-replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, const double *y,
+static int
+write_keyframe_once(struct replay_writer *w, long step, double t, double dt, const double *y,
     const double *hist, uint64_t hash, struct drape_err *err)
 {
 	size_t n6 = 6 * (size_t)w->nodes, len = 32 + 8 * n6 * (hist != NULL ? 2 : 1);
@@ -866,8 +879,8 @@ replay_step_same(const struct replay_step *a, const struct replay_step *b)
 	return true;
 }
 
-int
-replay_write_step(struct replay_writer *w, const struct replay_step *s,
+static int
+write_step_once(struct replay_writer *w, const struct replay_step *s,
     const struct contact_event *ev, struct drape_err *err)
 {
 	size_t nev = (size_t)s->nev;
@@ -896,8 +909,8 @@ replay_write_step(struct replay_writer *w, const struct replay_step *s,
 	return flush_if_due(w, err);
 }
 
-int
-replay_writer_flush(struct replay_writer *w, struct drape_err *err)
+static int
+writer_flush_once(struct replay_writer *w, struct drape_err *err)
 {
 	if (w->failed) {
 		err_set(err, "%s: not written after an earlier write error", w->path);
@@ -933,6 +946,44 @@ flush_if_due(struct replay_writer *w, struct drape_err *err)
 	return cut_if_due(w, err);	/* no provisional chunk did */
 }
 
+/* After any error the writer is failed: it writes nothing more, and its
+ * close does not mark the file closed cleanly (frames or steps may be
+ * missing from it, which a clean close would hide). */
+static int
+failed_if(struct replay_writer *w, int rc)
+{
+	if (rc != 0)
+		w->failed = true;
+	return rc;
+}
+
+int
+replay_write_frame(struct replay_writer *w, long step, double t, const double *x,
+    struct drape_err *err)
+{
+	return failed_if(w, write_frame_once(w, step, t, x, err));
+}
+
+int
+replay_write_keyframe(struct replay_writer *w, long step, double t, double dt, const double *y,
+    const double *hist, uint64_t hash, struct drape_err *err)
+{
+	return failed_if(w, write_keyframe_once(w, step, t, dt, y, hist, hash, err));
+}
+
+int
+replay_write_step(struct replay_writer *w, const struct replay_step *s,
+    const struct contact_event *ev, struct drape_err *err)
+{
+	return failed_if(w, write_step_once(w, s, ev, err));
+}
+
+int
+replay_writer_flush(struct replay_writer *w, struct drape_err *err)
+{
+	return failed_if(w, writer_flush_once(w, err));
+}
+
 int
 replay_writer_close(struct replay_writer *w, struct drape_err *err)
 {
@@ -964,7 +1015,8 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 				rc = -1;
 			else if (fseek(w->f, 0, SEEK_SET) != 0)
 				rc = write_fail(w, err);
-			else if (write_header(w, REPLAY_CLOSED, index_off, err) != 0)
+			else if (write_header(w, REPLAY_CLOSED | (w->end & REPLAY_END_MASK), index_off,
+			    err) != 0)
 				rc = -1;
 		}
 	}
@@ -988,6 +1040,26 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 	jobs_free(w->jobs);
 	memset(w, 0, sizeof *w);
 	return rc;
+}
+
+void
+replay_writer_discard(struct replay_writer *w)
+{
+	struct stat sb;
+	char *path;
+	bool made;
+
+	if (w->f == NULL)
+		return;
+	made = fstat(fileno(w->f), &sb) == 0 && S_ISREG(sb.st_mode);
+	path = made ? malloc(strlen(w->path) + 1) : NULL;
+	if (path != NULL)
+		strcpy(path, w->path);
+	w->failed = true;	/* nothing more written, the header not marked */
+	replay_writer_close(w, NULL);
+	if (path != NULL)
+		remove(path);
+	free(path);
 }
 
 /* ---- reader ---- */

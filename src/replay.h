@@ -67,13 +67,21 @@ replay_frames_lossy(uint32_t kind)
 struct replay_file_header {
 	char magic[8];		/* "DRAPERPL" */
 	uint32_t version;
-	uint32_t flags;		/* REPLAY_CLOSED once closed cleanly */
+	uint32_t flags;		/* REPLAY_CLOSED once closed cleanly, and how
+				 * the run ended (REPLAY_END_*) */
 	uint32_t nodes, triangles;
 	uint64_t index_offset;	/* of the index chunk, 0 until closed */
 	uint8_t reserved[28];
 	uint32_t crc;		/* CRC-32 of the 60 bytes before it */
 };
 #define REPLAY_CLOSED 1u
+/* With REPLAY_CLOSED: the run recorded stopped before its end time, the
+ * file holding it up to there (none of them: it reached its end, or the
+ * recording was stopped while the run went on). */
+#define REPLAY_END_INTERRUPTED 2u	/* a signal stopped it */
+#define REPLAY_END_BLOWUP 4u	/* the simulation diverged */
+#define REPLAY_END_ERROR 8u	/* it could not go on: out of memory, the broad phase */
+#define REPLAY_END_MASK 14u
 
 struct replay_chunk_header {
 	char magic[4];		/* "CHNK" */
@@ -131,7 +139,10 @@ struct replay_writer {
 	uint32_t width;		/* the frames' grid (struct replay_meta) */
 	long keyframe_every;
 	bool events_stored;	/* struct replay_meta */
-	bool failed;		/* a write failed: stop writing */
+	bool failed;		/* a write failed: stop writing, and do not
+				 * mark the file closed */
+	uint32_t end;		/* REPLAY_END_*: how the run ended, set by its
+				 * caller before the close */
 	/* pending frames: float32, and when precision > 0 the same rounded to
 	 * whole grid steps, while every value fits (q_fits) */
 	double precision;
@@ -192,10 +203,15 @@ int replay_write_step(struct replay_writer *w, const struct replay_step *s,
     const struct contact_event *ev, struct drape_err *err);
 /* Writes the pending frames and steps now, as chunks of their own. */
 int replay_writer_flush(struct replay_writer *w, struct drape_err *err);
-/* Writes what is pending, the index and the closed flag; frees w. Returns
- * 0, or -1 with a message (the file is then readable up to what was
- * written). */
+/* Writes what is pending, the index and the closed flag (with w->end);
+ * frees w. Returns 0, or -1 with a message (the file is then readable up
+ * to what was written). After an error of any writing function the file
+ * is not marked closed: it may lack what was being written. */
 int replay_writer_close(struct replay_writer *w, struct drape_err *err);
+/* Gives the file up: closes it and removes it if it is a regular file
+ * (what open made, not a device it was given); frees w. For a recording
+ * that failed before it held anything of the run. */
+void replay_writer_discard(struct replay_writer *w);
 
 /* ---- reading ---- */
 

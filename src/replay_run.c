@@ -53,7 +53,10 @@ replay_resume(const struct replay *rp, const char *file, const struct scene *sc,
 	int rc;
 
 	if ((k = replay_find_keyframe(rp, step)) < 0) {
-		err_set(err, "%s: no intact keyframe at or before step %ld", file, step);
+		if (step < 0)	/* the last one was asked for */
+			err_set(err, "%s: no intact keyframe", file);
+		else
+			err_set(err, "%s: no intact keyframe at or before step %ld", file, step);
 		return NULL;
 	}
 	if (replay_read_keyframe(rp, (size_t)k, &kf, &kerr) != 0) {

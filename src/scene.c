@@ -6,6 +6,7 @@
  * section_kinds[] and a reader for each. */
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -187,6 +188,10 @@ missing(struct pctx *c, const struct group *g, const char *key, const char *what
 
 enum bound { ANY, POSITIVE, NONNEGATIVE };
 
+/* units_parse's reason, if it gave one, as " (why)": three arguments for
+ * "%s%s%s" */
+#define REASON(why) (why)[0] != '\0' ? " (" : "", (why), (why)[0] != '\0' ? ")" : ""
+
 /*
  * Reads n numbers of dimension dim. Returns 1 if the key was there, 0 if it
  * is absent and optional, -1 on error (absent and required, or malformed).
@@ -202,8 +207,8 @@ get_numbers(struct pctx *c, const struct group *g, const char *key, enum unit_di
 	if (e == NULL)
 		return required ? missing(c, g, key, units_describe(dim)) : 0;
 	if (units_parse(e->value, dim, out, n, why, sizeof why) != 0)
-		return fail(c, e->line, "%s: %s; expected %s%s, got '%s'", key, why,
-		    n > 1 ? "numbers for " : "", units_describe(dim), e->value);
+		return fail(c, e->line, "%s: expected %s%s, got '%s'%s%s%s", key,
+		    n > 1 ? "numbers for " : "", units_describe(dim), e->value, REASON(why));
 	for (k = 0; k < n; k++) {
 		if (dim == DIM_LENGTH && !(fabs(out[k]) <= SCENE_MAX_COORD))
 			return fail(c, e->line, "%s: expected %s of at most %g m either way, got '%s'",
@@ -251,10 +256,11 @@ read_simulation(struct pctx *c, const struct group *g)
 	if (e != NULL && strcmp(e->value, "auto") != 0) {
 		char why[200];
 
+		why[0] = '\0';
 		if (units_parse(e->value, DIM_TIME, &sc->dt, 1, why, sizeof why) != 0 ||
 		    !(sc->dt > 0))
-			return fail(c, e->line, "dt: expected 'auto' or %s greater than 0, got '%s'",
-			    units_describe(DIM_TIME), e->value);
+			return fail(c, e->line, "dt: expected 'auto' or %s greater than 0, got "
+			    "'%s'%s%s%s", units_describe(DIM_TIME), e->value, REASON(why));
 		if (scene_steps(sc->duration, sc->dt) > SCENE_MAX_STEPS)
 			return fail(c, e->line, "dt: expected a step that covers the duration (%g s) "
 			    "in at most %.0e steps, got '%s' (%.3g steps)", sc->duration,
@@ -802,7 +808,7 @@ read_mesh(struct pctx *c, const struct group *g, struct obstacle *o)
 		free(path);
 		return fail(c, e->line, "file: %s", merr.msg);
 	}
-	free(path);
+	o->file = path;		/* freed with the obstacle */
 	if (get_numbers(c, g, "scale", DIM_NONE, 1, POSITIVE, 0, &scale) < 0 ||
 	    get_vec(c, g, "offset", 0, &offset) < 0)
 		return -1;
@@ -835,6 +841,12 @@ read_obstacle(struct pctx *c, const struct group *g)
 
 			if (get_numbers(c, g, "normal", DIM_NONE, 3, ANY, 1, nv) < 0)
 				return -1;
+			/* a subnormal vector's direction is known to a few bits, and
+			 * its squares vanish */
+			if (!(fmax(fabs(nv[0]), fmax(fabs(nv[1]), fabs(nv[2]))) >= DBL_MIN))
+				return fail(c, find(g, "normal")->line, "normal: expected a direction, a "
+				    "vector with a component of at least %g either way, got '%s'", DBL_MIN,
+				    find(g, "normal")->value);
 			o->normal = v3_load(nv);
 		}
 	} else if (strcmp(g->section, "box") == 0) {
@@ -1116,6 +1128,8 @@ int
 scene_load_set(struct scene *sc, const char *path, const char *const *sets, size_t nsets,
     struct drape_err *err)
 {
+	/* room for one byte past the bound, so that a longer file shows it */
+	const size_t most = (size_t)MAX_SCENE_BYTES + 1;
 	FILE *f;
 	char *buf = NULL;
 	size_t len = 0, cap = 0, got;
@@ -1127,20 +1141,22 @@ scene_load_set(struct scene *sc, const char *path, const char *const *sets, size
 		return -1;
 	}
 	do {
-		if (cap - len < 4096) {
+		if (len == cap) {
+			size_t want = cap == 0 ? 16384 : cap < most / 2 ? 2 * cap : most;
 			char *nb;
 
-			cap = cap ? 2 * cap : 16384;
-			if (cap > (size_t)MAX_SCENE_BYTES + 16384 || (nb = realloc(buf, cap)) == NULL) {
-				err_set(err, "%s:1: expected a scene of at most %d bytes", path,
-				    MAX_SCENE_BYTES);
+			if (cap == most)
+				break;
+			if ((nb = realloc(buf, want)) == NULL) {
+				err_set(err, "%s: out of memory", path);
 				free(buf);
 				fclose(f);
 				return -1;
 			}
 			buf = nb;
+			cap = want;
 		}
-		got = fread(buf + len, 1, cap - len - 1, f);
+		got = fread(buf + len, 1, cap - len, f);
 		len += got;
 	} while (got > 0);
 	if (ferror(f)) {
@@ -1150,6 +1166,7 @@ scene_load_set(struct scene *sc, const char *path, const char *const *sets, size
 		return -1;
 	}
 	fclose(f);
+	/* scene_parse_bytes_set refuses more than MAX_SCENE_BYTES */
 	rc = scene_parse_bytes_set(sc, path, buf, len, sets, nsets, err);
 	free(buf);
 	return rc;

@@ -116,9 +116,10 @@ struct source_live {
 	bool recording;
 	struct recorder rec;
 	char *rec_path;
-	char rec_error[600];	/* why the recording stopped by itself */
+	char rec_error[600];	/* why the last recording that failed did */
 	bool rec_error_new;
-	bool rec_failed;	/* a recording stopped by itself, at some point */
+	bool rec_failed;	/* a recording stopped by itself, or could not
+				 * start, at some point: the run's end says so */
 };
 
 /* st must outlive src; source_live_free closes a recording and frees what

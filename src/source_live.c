@@ -159,7 +159,15 @@ live_record(void *ctx, const char *path, char *why, size_t len)
 	strcpy(lv->rec_path, path);
 	if (record_open(&lv->rec, path, lv->st, every, lv->precision, lv->events_stored,
 	    &err) != 0) {
+		struct stepper_report r;
+
 		snprintf(why, len, "%s", err.msg);
+		/* a recording asked for and not made: said again at the end
+		 * (rec_failed), not only in the message line */
+		stepper_report(lv->st, &r);
+		snprintf(lv->rec_error, sizeof lv->rec_error, "recording from step %ld not made: %s",
+		    r.step, err.msg);
+		lv->rec_failed = true;
 		free(lv->rec_path);
 		lv->rec_path = NULL;
 		return -1;

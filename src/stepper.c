@@ -137,9 +137,37 @@ speed_scale(const struct stepper *st)
 	    forces_load_speed(&st->net.fo, sc->duration);
 }
 
+/* The fast path's step is cut into substeps of bending's and damping's
+ * (pbd_substep): at most PBD_MAX_SUBSTEPS of them, so that one step's work
+ * is bounded as the other methods' is (damping = 1e9/s asked 1e7 a step,
+ * 1e12/s overflowed an int). Refused at dt's line, with the step that
+ * would do. */
+static int
+fast_substeps_bounded(const struct stepper *st, struct drape_err *err)
+{
+	const struct scene *sc = st->sc;
+	const struct forces *fo = &st->net.fo;
+	double sub = pbd_substep(fo, st->dt_set), n = ceil(st->dt_set / sub * (1 - 1e-12));
+	double omega = cloth_omega_bound_bend(fo->cl);
+	char why[120];
+
+	if (n <= PBD_MAX_SUBSTEPS)
+		return 0;
+	if (fo->damping > 0 && !(1 / fo->damping > sub))
+		snprintf(why, sizeof why, "the damping rate, %g /s", fo->damping);
+	else
+		snprintf(why, sizeof why, "bending's highest frequency, %.3g rad/s", omega);
+	err_set(err, "%s:%d: dt%s: the fast path's substeps here are %.3g s long at most (%s), so "
+	    "a step of %g s takes %.3g of them; expected at most %d a step: a dt of at most %.3g s",
+	    sc->path, sc->dt_line, st->dt_auto ? " = auto" : "", sub, why, st->dt_set, n,
+	    PBD_MAX_SUBSTEPS, sub * PBD_MAX_SUBSTEPS);
+	return -1;
+}
+
 /* The integrator stage's step: the scene's dt, or dt = auto's for the
  * method, the stiffness bound and the speed scale; refused when it is not
- * a step or takes more than SCENE_MAX_STEPS steps. */
+ * a step, takes more than SCENE_MAX_STEPS steps or, on the fast path,
+ * more than PBD_MAX_SUBSTEPS substeps a step. */
 static int
 choose_dt(struct stepper *st, double vscale, struct drape_err *err)
 {
@@ -150,8 +178,9 @@ choose_dt(struct stepper *st, double vscale, struct drape_err *err)
 	    sc->mat.spring_damping, st->net.cl.h / vscale) : sc->dt;
 	st->dt = st->dt_set;
 	if (!(st->dt > 0) || !isfinite(st->dt)) {
-		err_set(err, "%s: cannot choose a time step (the stiffness bound is %g rad/s); "
-		    "set dt in [simulation]", sc->path, st->omega);
+		err_set(err, "%s:%d: dt%s: cannot choose a time step (the stiffness bound is %g "
+		    "rad/s); expected a dt in [simulation]", sc->path, sc->dt_line,
+		    st->dt_auto ? " = auto" : "", st->omega);
 		return -1;
 	}
 	if (scene_steps(sc->duration, st->dt_set) > SCENE_MAX_STEPS) {
@@ -161,7 +190,7 @@ choose_dt(struct stepper *st, double vscale, struct drape_err *err)
 		    scene_steps(sc->duration, st->dt_set), sc->duration, SCENE_MAX_STEPS);
 		return -1;
 	}
-	return 0;
+	return sc->integrator == INTEG_FAST ? fast_substeps_bounded(st, err) : 0;
 }
 
 /* The collision geometry stage: the collision stages, and the fast path's

@@ -4,14 +4,18 @@
  * on a live run r records. c cycles the colouring (colouring.h) where
  * there is colour, u the glyphs: ASCII, or in a UTF-8 locale braille and
  * half blocks (glyphs.h). */
+#include <ctype.h>
 #include <curses.h>
+#include <errno.h>
 #include <math.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "clock.h"
 #include "colouring.h"
@@ -31,7 +35,8 @@
 #define BUSY_FRACTION 0.8	/* of a frame spent stepping */
 
 /* The one piece of global state: the signal that asks the TUI to end,
- * set by the handler, read by the loop. */
+ * set by the handler (or by the loop when the terminal is gone, as a
+ * SIGHUP), read by the loop. */
 static volatile sig_atomic_t quit_signal;
 
 static void
@@ -963,6 +968,18 @@ colours(struct tui *ui)
 	ui->palette256 = COLORS >= 256 && COLOR_PAIRS >= PAIR_PALETTE + PALETTE_SIZE;
 }
 
+/* The terminal went away without a SIGHUP reaching us (a parent that
+ * ignores it, tmux kill-session): poll says so, and read gives 0 at once,
+ * forever; getch's ERR then came back without its wait, a loop at 100 %
+ * CPU. */
+static bool
+terminal_gone(void)
+{
+	struct pollfd p = { .fd = STDIN_FILENO, .events = POLLIN };
+
+	return poll(&p, 1, 0) > 0 && (p.revents & (POLLHUP | POLLERR | POLLNVAL)) != 0;
+}
+
 static void
 loop(struct tui *ui)
 {
@@ -994,8 +1011,11 @@ loop(struct tui *ui)
 		}
 		t = clock_seconds();
 		timeout(ui->running ? (int)fmax(0, ceil(1000 * (next - t))) : 250);
-		if ((ch = getch()) == ERR)
+		if ((ch = getch()) == ERR) {
+			if (terminal_gone())
+				quit_signal = SIGHUP;	/* ends as a hangup would */
 			continue;
+		}
 		/* every key already typed, then one redraw */
 		do {
 			if (ch != KEY_RESIZE)
@@ -1092,9 +1112,13 @@ int
 tui_parse_delay(const char *s, int *delay)
 {
 	char *end;
-	long d = strtol(s, &end, 10);
+	long d;
 
-	if (end == s || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
+	if (!isdigit((unsigned char)s[0]))	/* strtol would skip blanks, take a sign */
+		return -1;
+	errno = 0;
+	d = strtol(s, &end, 10);
+	if (errno != 0 || *end != '\0' || d < 1 || d > TUI_DELAY_MAX)
 		return -1;
 	*delay = (int)d;
 	return 0;

@@ -62,9 +62,30 @@ number_start(const char *s)
 	    ((s[0] == '-' || s[0] == '+') && (isdigit((unsigned char)s[1]) || s[1] == '.'));
 }
 
+/* The SI unit of a dimension: its unit of factor 1. */
+static const char *
+si_name(enum unit_dim dim)
+{
+	size_t i;
+
+	for (i = 0; i < sizeof units / sizeof units[0]; i++)
+		if (units[i].dim == dim && units[i].factor == 1)
+			return units[i].name;
+	return "SI units";
+}
+
+/* Not a number at all: the caller's "expected ..., got '...'" says it. */
+static void
+no_reason(char *why, size_t whylen)
+{
+	if (whylen > 0)
+		why[0] = '\0';
+}
+
 int
 units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, size_t whylen)
 {
+	const char *unit = NULL;
 	double factor = 1;
 	char *end;
 	int k;
@@ -76,20 +97,21 @@ units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, siz
 			const char *w = s + (*s == '-' || *s == '+');
 
 			if (strncasecmp(w, "nan", 3) == 0 || strncasecmp(w, "inf", 3) == 0)
-				snprintf(why, whylen, "expected a finite number");
+				snprintf(why, whylen, "not a finite number");
+			else if (k > 0)
+				snprintf(why, whylen, "%d of the %d numbers", k, n);
 			else
-				snprintf(why, whylen, k == 0 ? "expected a number" :
-				    "expected %d numbers", n);
+				no_reason(why, whylen);
 			return -1;
 		}
 		out[k] = strtod(s, &end);
 		if (!isfinite(out[k])) {
-			snprintf(why, whylen, "expected a finite number");
+			snprintf(why, whylen, "not a finite number");
 			return -1;
 		}
 		if (*end != '\0' && !isspace((unsigned char)*end) && !isalpha((unsigned char)*end) &&
 		    *end != '/' && *end != '*') {
-			snprintf(why, whylen, "expected a number, got '%s'", s);
+			no_reason(why, whylen);
 			return -1;
 		}
 		s = end;
@@ -100,19 +122,32 @@ units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, siz
 		size_t i;
 
 		if (number_start(s)) {
-			snprintf(why, whylen, "expected %d number%s, got more", n, n == 1 ? "" : "s");
+			snprintf(why, whylen, "more than %d number%s", n, n == 1 ? "" : "s");
 			return -1;
 		}
 		for (i = 0; i < sizeof units / sizeof units[0]; i++)
 			if (units[i].dim == dim && strcmp(units[i].name, s) == 0)
 				break;
 		if (i == sizeof units / sizeof units[0]) {
-			snprintf(why, whylen, "unknown unit '%s' for %s", s, units_describe(dim));
+			if (dim == DIM_NONE)
+				snprintf(why, whylen, "a number takes no unit, found '%s'", s);
+			else
+				snprintf(why, whylen, "unknown unit '%s'", s);
 			return -1;
 		}
 		factor = units[i].factor;
+		unit = units[i].name;
 	}
-	for (k = 0; k < n; k++)
-		out[k] *= factor;
+	for (k = 0; k < n; k++) {
+		double si = out[k] * factor;
+
+		/* 1e308 GPa is a finite number in a unit that is not one in Pa */
+		if (!isfinite(si)) {
+			snprintf(why, whylen, "%g %s is past the largest number in %s", out[k], unit,
+			    si_name(dim));
+			return -1;
+		}
+		out[k] = si;
+	}
 	return 0;
 }

@@ -20,7 +20,11 @@ enum unit_dim {
 
 /*
  * Parses exactly n finite numbers followed by an optional unit of dimension
- * dim (a missing unit means SI). Returns 0, or -1 with the reason in why.
+ * dim (a missing unit means SI); a value that is not finite once in SI
+ * units (1e308 GPa) is refused. Returns 0, or -1 with why set to what a
+ * message may add to "expected ..., got '...'", as a phrase ("unknown unit
+ * 'kg'", "not a finite number"), or empty when the text is simply not the
+ * numbers expected.
  */
 int units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, size_t whylen);
 

@@ -97,7 +97,7 @@ static const struct bad_case {
 	{ "malformed value", SIM "[cloth]\nnodes = 4 4\nspacing = ten mm\nweight = 1\n"
 	  "thickness = 1 mm\nmodulus_warp = 1\nmodulus_weft = 1\nshear_modulus = 0\n"
 	  "bending_warp = 0\nbending_weft = 0\n", 5,
-	  "spacing: expected a number" },
+	  "spacing: expected a length (m, cm, mm, um), got 'ten mm'" },
 	{ "zero spacing", SIM "[cloth]\nnodes = 4 4\nspacing = 0 mm\nweight = 1\nthickness = 1 mm\n"
 	  "modulus_warp = 1\nmodulus_weft = 1\nshear_modulus = 0\nbending_warp = 0\n"
 	  "bending_weft = 0\n", 5, "spacing: expected a length (m, cm, mm, um) greater than 0" },
@@ -105,7 +105,7 @@ static const struct bad_case {
 	  "thickness = 1 mm\nmodulus_warp = 1\nmodulus_weft = 1\nshear_modulus = 0\n"
 	  "bending_warp = 0\nbending_weft = 0\n", 6, "weight: expected a weight per area" },
 	{ "NaN", "[simulation]\nduration = nan\n[cloth]\nnodes = 4 4\n" CLOTH_BODY, 2,
-	  "duration: expected a finite number" },
+	  "duration: expected a time (s, ms, us), got 'nan' (not a finite number)" },
 	{ "0 x 1 nodes", SIM "[cloth]\nnodes = 0 1\n" CLOTH_BODY, 4,
 	  "nodes: expected two whole numbers nu nv, each from 1" },
 	{ "unknown unit", SIM "[cloth]\nnodes = 4 4\nspacing = 1 furlong\nweight = 1\n"

@@ -106,7 +106,8 @@ number_with_unit(void **state)
 	    "thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 40 uN*m\nbending_weft = 1 uN*m\n[pin]\nnodes = 0 *\n" PLANES
 	    MESH("a.obj") COLLISION, true);
-	refused("run --headless", "cloth.bending_warp=4 kg", "bending_warp: unknown unit 'kg'");
+	refused("run --headless", "cloth.bending_warp=4 kg", "bending_warp: expected a bending "
+	    "rigidity (N*m, mN*m, uN*m, gf*cm2/cm), got '4 kg' (unknown unit 'kg')");
 	refused("run --headless", "cloth.bending_warp=-4 uN*m",
 	    "bending_warp: expected a bending rigidity");
 	refused("run --headless", "cloth.spacing=0 mm",
@@ -238,7 +239,8 @@ check_and_snapshot(void **state)
 	struct result r;
 
 	(void)state;
-	refused("check", "cloth.bending_warp=4 kg", "bending_warp: unknown unit 'kg'");
+	refused("check", "cloth.bending_warp=4 kg", "bending_warp: expected a bending rigidity "
+	    "(N*m, mN*m, uN*m, gf*cm2/cm), got '4 kg' (unknown unit 'kg')");
 	refused("check", "cloth.spacing=0mm", "spacing: expected a length");
 	refused("check", "nosuch.key=1", "unknown section [nosuch]");
 	/* a --set bad for the second scene only: refused before the first

@@ -6,7 +6,9 @@
 # replay: g goes to a step, the inspector lists a node's event of it, End,
 # Home, PgDn, the arrows; r records a live run, --record on a terminal
 # records from the start, each into a file drape info finds whole, q and
-# SIGTERM closing it. A blow-up and an error (exit 3 and 1) each named so.
+# SIGTERM closing it; r on a full disk fails honestly (exit 1, no file); a
+# terminal gone without SIGHUP ends the run as SIGHUP does (exit 129).
+# A blow-up and an error (exit 3 and 1) each named so.
 # At 80 x 24: u cycles the glyphs, c the colouring, with its legend (the
 # scale and its numbers) at the foot of the view.
 # Skipped (77) without tmux. Waits poll the pane, with a timeout.
@@ -284,6 +286,59 @@ if wait_for 'prompt\$'; then
 			fail "full disk: no message after q"
 	fi
 	rm -f "$tmp"/rec/*.drr
+	tm kill-session -t t
+fi
+
+# r onto a full disk (issue 29, 2): the recording cannot start (its
+# first keyframe does not fit under 1 KiB): the TUI says so, no file is
+# left holding the scene alone, and after q the message is on the
+# terminal, exit 1 (it was exit 0, with that file kept)
+echo "== r onto a full disk"
+tm new-session -d -s t -x 120 -y 40 -c "$tmp/rec" "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "bash -c 'trap \"\" XFSZ; ulimit -f 1; exec $DRAPE run --paused $tmp/fall.scene'; echo EXIT=\$?" Enter
+	if wait_for 'step 0 .*paused'; then
+		tm send-keys -t t n r
+		wait_for 'recording: drape-[0-9-]*.drr: write failed' &&
+			{ tm send-keys -t t q; wait_for 'EXIT=[0-9]+'; }
+		grep -q 'EXIT=1' "$tmp/screen" || fail "r on a full disk: not exit 1"
+		grep -q '^drape: recording from step 1 not made: drape-[0-9-]*.drr: write failed' \
+			"$tmp/screen" || fail "r on a full disk: no message after q"
+		ls "$tmp"/rec/*.drr >/dev/null 2>&1 && fail "r on a full disk: a file was left"
+	fi
+	rm -f "$tmp"/rec/*.drr
+	tm kill-session -t t
+fi
+
+# the terminal gone without a SIGHUP reaching drape (issue 29, 3): the
+# shell between ignores it, and the session is killed. drape read end of
+# input forever at 100 % CPU; now it ends as on SIGHUP: exit 129, its
+# replay closed (a signal ended the run)
+echo "== the terminal gone, no SIGHUP"
+tm new-session -d -s t -x 120 -y 40 -c "$tmp/rec" \
+	"sh -c 'trap \"\" HUP; sh -c \"echo \\\$\\\$ >$tmp/gone.pid; exec $DRAPE run --paused --record gone.drr $tmp/fall.scene\"; echo \$? >$tmp/gone.rc'" ||
+	fail "tmux"
+if wait_for 'recording into gone.drr'; then
+	tm send-keys -t t n n
+	wait_for 'step 2 '
+	tm kill-session -t t
+	for i in $(seq 300); do
+		[ -s "$tmp/gone.rc" ] && break
+		sleep 0.1
+	done
+	if [ ! -s "$tmp/gone.rc" ]; then
+		echo "drape still running: $(ps -o pid,stat,pcpu,args -p "$(cat "$tmp/gone.pid")" | tail -n 1)" >"$tmp/screen"
+		kill -9 "$(cat "$tmp/gone.pid")"
+		fail "the terminal gone: drape did not end"
+	else
+		echo "exit $(cat "$tmp/gone.rc")" >"$tmp/screen"
+		[ "$(cat "$tmp/gone.rc")" = 129 ] || fail "the terminal gone: not exit 129"
+		"$DRAPE" info "$tmp/rec/gone.drr" >"$tmp/screen" 2>&1
+		grep -q 'closed cleanly; the run ended there on a signal' "$tmp/screen" ||
+			fail "the terminal gone: the replay is not closed"
+	fi
+	rm -f "$tmp"/rec/*.drr
+else
 	tm kill-session -t t
 fi
 

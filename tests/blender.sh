@@ -18,7 +18,7 @@ trap 'rm -rf "$tmp"' EXIT
 cat >"$tmp/fall.scene" <<'SCENE'
 [simulation]
 duration = 50 ms
-output_rate = 200
+output_rate = 200 Hz
 [cloth]
 nodes = 6 6
 spacing = 10 mm

@@ -30,7 +30,7 @@ duration = 10 ms
 [cloth]
 nodes = 6 6
 spacing = 10 mm
-origin = -0.025 0.01 -0.025
+origin = -0.025 0.01 -0.025 m
 weight = 100 g/m2
 thickness = 0.3 mm
 modulus_warp = 0.5 MPa

@@ -196,8 +196,8 @@ presets_by_name(void **state)
 	assert_int_equal(view_preset_from_name("back"), -1);
 }
 
-#define SMALL "[simulation]\nduration = 0.2\ndt = 0.2 ms\n[cloth]\nnodes = 6 6\n" \
-	"spacing = 20 mm\norigin = -0.05 0.05 -0.05\norientation = +x +z\nweight = 100 g/m2\n" \
+#define SMALL "[simulation]\nduration = 0.2 s\ndt = 0.2 ms\n[cloth]\nnodes = 6 6\n" \
+	"spacing = 20 mm\norigin = -0.05 0.05 -0.05 m\norientation = +x +z\nweight = 100 g/m2\n" \
 	"thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n" \
 	"bending_warp = 0\nbending_weft = 0\n[plane]\npoint = 0 0 0\n"
 

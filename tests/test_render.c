@@ -343,8 +343,8 @@ png_rejects_bad_sizes_and_writes_whole(void **state)
 /* ---- strain colouring ---- */
 
 static const char SHEET[] =
-	"[simulation]\nduration = 1\ndt = auto\n"
-	"[cloth]\nnodes = 6 6\nspacing = 10 mm\norigin = -0.025 0 -0.025\n"
+	"[simulation]\nduration = 1 s\ndt = auto\n"
+	"[cloth]\nnodes = 6 6\nspacing = 10 mm\norigin = -0.025 0 -0.025 m\n"
 	"orientation = +x +z\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	"modulus_warp = 0.5 MPa\nmodulus_weft = 0.5 MPa\nshear_modulus = 10 kPa\n"
 	"bending_warp = 0\nbending_weft = 0\n";

@@ -28,7 +28,7 @@
 
 static const char tiny_scene[] =
     "# A 4 x 4 cloth dropped onto the floor: a small replay for the tests.\n"
-    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200\n" TINY_CLOTH;
+    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200 Hz\n" TINY_CLOTH;
 
 #define KEY_EVERY 40
 
@@ -64,7 +64,7 @@ path_in_dir(char *out, size_t len, const char *name)
  * are several and its contacts with the floor and itself many. */
 static const char tiny_fast_scene[] =
     "[simulation]\nname = tiny-fast\nduration = 0.3 s\ndt = 5 ms\nintegrator = fast\n"
-    "output_rate = 200\n" TINY_CLOTH;
+    "output_rate = 200 Hz\n" TINY_CLOTH;
 
 static void record_text_p(struct truth *tr, const char *path, const char *text, int key_every,
     double precision);

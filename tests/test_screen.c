@@ -83,10 +83,10 @@ event_rings(void **state)
 	evlog_free(&log);
 }
 
-#define SCENE_TEXT "[simulation]\nname = small\nduration = 0.01\n[cloth]\nnodes = 4 4\n" \
+#define SCENE_TEXT "[simulation]\nname = small\nduration = 0.01 s\n[cloth]\nnodes = 4 4\n" \
 	"spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\n" \
 	"modulus_weft = 1 MPa\nshear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n" \
-	"[plane]\npoint = 0 -1 0\n[collision]\nself = on\nbroad = grid\nnarrow = ccd\n"
+	"[plane]\npoint = 0 -1 0 m\n[collision]\nself = on\nbroad = grid\nnarrow = ccd\n"
 
 static void
 status_and_panels(void **state)

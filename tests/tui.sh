@@ -34,12 +34,12 @@ trap 'exit 1' INT TERM HUP PIPE
 # a 10 x 10 cloth falling on a plane, in self-contact
 cat >"$tmp/fall.scene" <<'SCENE'
 [simulation]
-duration = 1
+duration = 1 s
 dt = auto
 [cloth]
 nodes = 10 10
 spacing = 10 mm
-origin = -0.045 0.03 -0.045
+origin = -0.045 0.03 -0.045 m
 orientation = +x +z
 weight = 100 g/m2
 thickness = 0.3 mm
@@ -348,7 +348,7 @@ fi
 # message on the terminal after q in both
 cat >"$tmp/stiff.scene" <<'SCENE'
 [simulation]
-duration = 1
+duration = 1 s
 dt = 5 ms
 [cloth]
 nodes = 6 6

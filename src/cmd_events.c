@@ -100,16 +100,11 @@ cmd_events(int argc, char **argv)
 			usage(stdout);
 			return EXIT_OK;
 		default:
-			fprintf(stderr, "drape events: unknown option or missing value: '%s'\n",
-			    argv[optind - 1]);
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("events", argv);
 		}
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape events: expected one replay file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("events", "expected one replay file");
 	}
 	if (replay_open(&r, argv[optind], &err) != 0) {
 		fprintf(stderr, "drape events: %s\n", err.msg);

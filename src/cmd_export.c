@@ -169,16 +169,11 @@ cmd_export(int argc, char **argv)
 			usage(stdout);
 			return EXIT_OK;
 		default:
-			fprintf(stderr, "drape export: unknown option or missing value: '%s'\n",
-			    argv[optind - 1]);
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("export", argv);
 		}
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape export: expected one replay file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("export", "expected one replay file");
 	}
 	if (pc2 == NULL && obj == NULL && seq == NULL) {
 		fprintf(stderr, "drape export: expected --pc2 OUT.pc2, --obj REST.obj or "

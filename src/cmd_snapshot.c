@@ -555,12 +555,23 @@ snapshot_png(struct snapshot *sn)
 	for (k = 0; k < sn->ntargets; k++)
 		fr[k] = (struct picture_frame){ sh[k].t, sh[k].x,
 			sn->colouring == COLOUR_SHADE ? NULL : sh[k].field };
+	memset(&po, 0, sizeof po);
 	po.w = sn->w;
 	po.h = sn->h;
 	po.colouring = sn->colouring;
 	po.range = sn->range > 0 ? sn->range : colouring_range(sn->colouring, m);
 	po.title = s.sc->name;
 	po.supersample = PICTURE_SUPERSAMPLE;
+	/* --size is the whole picture's: the band under the frames within it */
+	if (sn->size_given && picture_fit(s.sc, &cam, &po, sn->ntargets, sn->w, sn->h,
+	    PICTURE_MIN_SIDE) != 0) {
+		fprintf(stderr, "drape snapshot: --size %s: the band under the frames takes %d "
+		    "rows of the %d, leaving frames of %d x %d pixels; expected at least %d x %d: "
+		    "a larger --size\n", sn->size_arg, sn->h - po.h, sn->h, po.w, po.h,
+		    PICTURE_MIN_SIDE, PICTURE_MIN_SIDE);
+		rc = EXIT_USAGE;
+		goto done;
+	}
 	if (picture_strip(s.sc, s.cl, &cam, fr, sn->ntargets, &po, &rgb, &w, &h, &err) != 0 ||
 	    png_write(sn->png, rgb, w, h, &err) != 0) {
 		fprintf(stderr, "drape snapshot: %s\n", err.msg);
@@ -603,9 +614,8 @@ add_frames(struct snapshot *sn)
 	return EXIT_OK;
 }
 
-/* One option's value into sn; an exit status. */
-/* WxH, each from 1 to PICTURE_MAX_SIDE (the text's bound is checked later);
- * 0, or -1. */
+/* WxH, each from 1 to PICTURE_MAX_WIDTH (each kind's bounds are checked
+ * later); 0, or -1. */
 static int
 parse_size(const char *arg, int *w, int *h)
 {
@@ -617,14 +627,15 @@ parse_size(const char *arg, int *w, int *h)
 		return -1;
 	memcpy(side, arg, (size_t)(x - arg));
 	side[x - arg] = '\0';
-	if (cmd_parse_long(side, 1, PICTURE_MAX_SIDE, &lw) != 0 ||
-	    cmd_parse_long(x + 1, 1, PICTURE_MAX_SIDE, &lh) != 0)
+	if (cmd_parse_long(side, 1, PICTURE_MAX_WIDTH, &lw) != 0 ||
+	    cmd_parse_long(x + 1, 1, PICTURE_MAX_WIDTH, &lh) != 0)
 		return -1;
 	*w = (int)lw;
 	*h = (int)lh;
 	return 0;
 }
 
+/* One option's value into sn; an exit status. */
 static int
 take_option(struct snapshot *sn, int c, const char *arg)
 {
@@ -731,18 +742,27 @@ check_options(struct snapshot *sn)
 	}
 	if (sn->size_given && (sn->png == NULL ?
 	    sn->w > SNAPSHOT_MAX_SIDE || sn->h > SNAPSHOT_MAX_SIDE :
-	    sn->w < PICTURE_MIN_SIDE || sn->h < PICTURE_MIN_SIDE))
+	    sn->w < PICTURE_MIN_SIDE || sn->h < PICTURE_MIN_SIDE || sn->h > PICTURE_MAX_SIDE))
 		return bad("--size", sn->size_arg, sn->png == NULL ?
 		    "WxH, each from 1 to 1000 characters, as 80x24" :
-		    "WxH, each from 16 to 4096 pixels, as 480x360");
+		    "WxH, the whole picture's, from 16 to 16384 pixels wide and from 16 to 4096 "
+		    "high, as 640x480");
 	if (!sn->size_given) {
 		sn->w = sn->png != NULL ? PICTURE_W : 80;
 		sn->h = sn->png != NULL ? PICTURE_H : 24;
 	}
 	if (nframes < 1)
 		nframes = 1;
-	if (sn->png != NULL && (nframes > PICTURE_MAX_FRAMES ||
-	    nframes * (sn->w + PICTURE_GAP) > PICTURE_MAX_WIDTH)) {
+	/* a given size is the whole picture's: its frames share the width */
+	if (sn->png != NULL && sn->size_given && nframes <= PICTURE_MAX_FRAMES &&
+	    (sn->w - (nframes - 1) * PICTURE_GAP) / nframes < PICTURE_MIN_SIDE) {
+		fprintf(stderr, "drape snapshot: --size %s: %ld frames side by side leave each "
+		    "under %d pixels wide: fewer frames, or a wider --size\n", sn->size_arg,
+		    nframes, PICTURE_MIN_SIDE);
+		return EXIT_USAGE;
+	}
+	if (sn->png != NULL && (nframes > PICTURE_MAX_FRAMES || (!sn->size_given &&
+	    nframes * (sn->w + PICTURE_GAP) > PICTURE_MAX_WIDTH))) {
 		fprintf(stderr, "drape snapshot: %ld frames of %d pixels are wider than %d "
 		    "pixels: fewer frames, or a smaller --size\n", nframes, sn->w,
 		    PICTURE_MAX_WIDTH);
@@ -791,9 +811,7 @@ parse_options(int argc, char **argv, struct snapshot *sn)
 			return rc;
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape snapshot: expected one scene file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("snapshot", "expected one scene or replay file");
 	}
 	sn->path = argv[optind];
 	return check_options(sn);

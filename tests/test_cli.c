@@ -640,10 +640,164 @@ signals_within_a_large_step(void **state)
 	}
 }
 
+/* Issue 30: a mistake on the command line is said in one line, with where
+ * the usage is: 30 lines of usage pushed it off the screen. */
+static void
+usage_errors_in_one_line(void **state)
+{
+	static const char *const cmds[] = { "", "run", "replay", "info", "events", "export",
+		"snapshot", "check", "plot", "ccd" };
+	char args[200];
+	struct result r;
+	size_t i;
+
+	(void)state;
+	for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+		snprintf(args, sizeof args, "%s --bogus x", cmds[i]);
+		drape(&r, args);
+		if (r.status != 2 || strstr(r.err, "unknown option '--bogus'; see drape --help\n") ==
+		    NULL || strchr(r.err, '\n') != r.err + strlen(r.err) - 1 || r.out[0] != '\0')
+			fail_msg("drape %s: exit %d, stderr '%s'; expected 2 and one line", args,
+			    r.status, r.err);
+	}
+	drape(&r, "run --until");
+	assert_int_equal(r.status, 2);
+	assert_string_equal(r.err, "drape run: option '--until' needs a value; see drape --help\n");
+	drape(&r, "events");
+	assert_int_equal(r.status, 2);
+	assert_string_equal(r.err, "drape events: expected one replay file; see drape --help\n");
+	drape(&r, "--help");	/* asked for, it is all there */
+	assert_non_null(strstr(r.out, "drape ccd [--method"));
+}
+
+/* Issue 30: 'drape snapshto' said "snapshto: cannot open": a word that is
+ * no command and no file is a mistyped command, the nearest suggested. */
+static void
+unknown_command(void **state)
+{
+	struct result r;
+
+	(void)state;
+	drape(&r, "snapshto --png a.png replays/strip.drr");
+	assert_int_equal(r.status, 2);
+	assert_string_equal(r.err, "drape: unknown command 'snapshto'; did you mean 'snapshot'? "
+	    "See drape --help\n");
+	drape(&r, "rn x.scene");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "did you mean 'run'?"));
+	drape(&r, "inof x.drr");
+	assert_non_null(strstr(r.err, "did you mean 'info'?"));
+	drape(&r, "xyzzy");
+	assert_int_equal(r.status, 2);
+	assert_string_equal(r.err, "drape: 'xyzzy' is neither a command nor a scene file; see "
+	    "drape --help\n");
+	/* a path is a scene, found or not */
+	drape(&r, "no-such.scene");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "no-such.scene: cannot open"));
+}
+
+/* Issue 30: 'nodes = 25' said "expected numbers for a number"; a cloth
+ * placed inside the floor ran, and "the network tore" at step 1. */
+static void
+scene_mistakes_said_plainly(void **state)
+{
+	char args[1200];
+	struct result r;
+
+	(void)state;
+	run_text(&r, "n25.scene", SIM "[cloth]\nnodes = 25\n" CLOTH_BODY);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "n25.scene:4: nodes: expected two whole numbers, the nodes "
+	    "along the warp and along the weft, such as 'nodes = 25 25', got '25' (1 number, "
+	    "not 2)\n"));
+	snprintf(args, sizeof args, "run --headless --set 'cloth.origin=-0.12 -0.05 -0.12 m' "
+	    "'%s/scenes/tablecloth.scene'", TOP_SRCDIR);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "drape: --set cloth.origin=-0.12 -0.05 -0.12 m: origin: the "
+	    "cloth starts inside the [plane] of line 47: its node at i 0, j 0, (-0.12, -0.05, "
+	    "-0.12) m, is 50 mm inside (625 nodes in all); expected the whole cloth outside the "
+	    "obstacles as it starts\n"));
+	assert_null(strstr(r.err, "tore"));
+	assert_string_equal(r.out, "");
+	/* the box too, in the file itself */
+	run_text(&r, "inbox.scene", SIM "[cloth]\nnodes = 4 4\norigin = 0 0.05 0 m\n" CLOTH_BODY
+	    "[box]\nmin = -1 0 -1 m\nmax = 1 0.1 1 m\n");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "inbox.scene:5: origin: the cloth starts inside the [box] of "
+	    "line 14"));
+}
+
+/* The width and height of a PNG, from its IHDR. */
+static void
+png_size(const char *path, int *w, int *h)
+{
+	unsigned char b[24];
+	FILE *f = fopen(path, "rb");
+
+	assert_non_null(f);
+	assert_int_equal(fread(b, 1, sizeof b, f), sizeof b);
+	fclose(f);
+	*w = (b[16] << 24) | (b[17] << 16) | (b[18] << 8) | b[19];
+	*h = (b[20] << 24) | (b[21] << 16) | (b[22] << 8) | b[23];
+}
+
+/* Issue 30: --size 640x480 wrote 640 x 514, the band under the frame
+ * added: the size asked is the file's, band and all. */
+static void
+picture_is_the_size_asked(void **state)
+{
+	static const struct {
+		const char *opts;
+		int w, h;
+	} cases[] = {
+		{ "--size 640x480", 640, 480 },
+		{ "--size 641x300 --frames 3", 641, 300 },
+		{ "--size 400x200 --strip 0.5,1 --color strain", 400, 200 },
+		{ "--size 1460x217 --frames 6", 1460, 217 },
+		{ "", 480, 418 },	/* no size: a 480 x 360 frame, the band under it */
+	};
+	char args[1200], out[700];
+	struct result r;
+	size_t i;
+	int w, h;
+
+	(void)state;
+	snprintf(out, sizeof out, "%s/size.png", dir);
+	for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+		snprintf(args, sizeof args, "snapshot --png '%s' %s '%s/replays/tablecloth.drr'", out,
+		    cases[i].opts, TOP_SRCDIR);
+		drape(&r, args);
+		if (r.status != 0)
+			fail_msg("drape %s: exit %d, %s", args, r.status, r.err);
+		png_size(out, &w, &h);
+		if (w != cases[i].w || h != cases[i].h)
+			fail_msg("%s: %d x %d, expected %d x %d", cases[i].opts, w, h, cases[i].w,
+			    cases[i].h);
+	}
+	remove(out);
+	snprintf(args, sizeof args, "snapshot --png '%s' --size 640x30 '%s/replays/tablecloth.drr'",
+	    out, TOP_SRCDIR);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--size 640x30: the band under the frames takes"));
+	assert_int_equal(access(out, F_OK), -1);
+	snprintf(args, sizeof args, "snapshot --png '%s' --size 100x300 --frames 8 "
+	    "'%s/replays/tablecloth.drr'", out, TOP_SRCDIR);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "8 frames side by side leave each under 16 pixels wide"));
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(usage_errors_in_one_line),
+		cmocka_unit_test(unknown_command),
+		cmocka_unit_test(scene_mistakes_said_plainly),
+		cmocka_unit_test(picture_is_the_size_asked),
 		cmocka_unit_test(help_and_version),
 		cmocka_unit_test(bad_scenes_exit_2),
 		cmocka_unit_test(good_scene_runs),

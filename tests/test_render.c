@@ -692,18 +692,19 @@ same_frame_same_bytes(void **state)
 	assert_memory_equal(pa, pb, la);
 	png_read(pa, la, &rd);
 	assert_int_equal(rd.w, 160);
-	assert_true(rd.h > 120);	/* the frame and the legend's band */
+	assert_int_equal(rd.h, 120);	/* the frame and the legend's band, as asked */
 	free(rd.rgb);
 	free(pa);
 	free(pb);
 	/* a filmstrip of three frames, side by side */
-	snprintf(args, sizeof args, "snapshot --png '%s' --strip 0,0.1,0.2 --size 100x80 "
+	snprintf(args, sizeof args, "snapshot --png '%s' --strip 0,0.1,0.2 --size 308x80 "
 	    "--color contact '" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'", a);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
 	pa = slurp_file(a, &la);
 	png_read(pa, la, &rd);
 	assert_int_equal(rd.w, 3 * 100 + 2 * PICTURE_GAP);
+	assert_int_equal(rd.h, 80);
 	free(rd.rgb);
 	free(pa);
 	/* a scene, stepped to a time */
@@ -758,8 +759,9 @@ bad_arguments(void **state)
 		fail_msg("drape %s: stderr '%s', expected '%s'", args, r.err, want); \
 } while (0)
 	TRY(2, "--size '8x8'", "snapshot --png '%s' --size 8x8 %s", out, rp);
-	TRY(2, "16 to 4096 pixels", "snapshot --png '%s' --size 10x100 %s", out, rp);
-	TRY(2, "--size '5000x100'", "snapshot --png '%s' --size 5000x100 %s", out, rp);
+	TRY(2, "from 16 to 16384 pixels wide", "snapshot --png '%s' --size 10x100 %s", out, rp);
+	TRY(2, "--size '20000x100'", "snapshot --png '%s' --size 20000x100 %s", out, rp);
+	TRY(2, "from 16 to 4096 high", "snapshot --png '%s' --size 100x5000 %s", out, rp);
 	TRY(2, "--size '300x'", "snapshot --png '%s' --size 300x %s", out, rp);
 	TRY(2, "1 to 1000 characters", "snapshot --size 2000x10 %s", rp);
 	TRY(2, "--strip '0,,1'", "snapshot --png '%s' --strip 0,,1 %s", out, rp);
@@ -770,7 +772,9 @@ bad_arguments(void **state)
 	TRY(2, "need --png", "snapshot --strip 0,0.1 %s", rp);
 	TRY(2, "one --step or one --time", "snapshot --png '%s' --step 5 --strip 0,0.1 %s", out, rp);
 	TRY(2, "--frames '1'", "snapshot --png '%s' --frames 1 %s", out, rp);
-	TRY(2, "wider than 16384", "snapshot --png '%s' --frames 40 --size 1000x100 %s", out, rp);
+	TRY(2, "wider than 16384", "snapshot --png '%s' --frames 40 %s", out, rp);
+	TRY(2, "40 frames side by side leave each under 16 pixels wide", "snapshot --png '%s' "
+	    "--frames 40 --size 500x100 %s", out, rp);
 	TRY(2, "--color 'stress'", "snapshot --png '%s' --color stress %s", out, rp);
 	TRY(2, "--range is the scale", "snapshot --png '%s' --range 5 %s", out, rp);
 	TRY(2, "not with --png", "snapshot --png '%s' --unicode %s", out, rp);

@@ -56,6 +56,8 @@ struct snapshot {
 	double zoom;		/* 0: 1 */
 	bool centred;
 	vec3 centre;		/* of the view, when centred */
+	bool frame_scene;	/* --frame scene: the whole scene as it starts, as the
+				 * TUI opens; else the cloth in the frames drawn */
 	int w, h;		/* characters, or a frame's pixels */
 	bool size_given;
 	const char *size_arg;
@@ -387,17 +389,22 @@ go_to(struct snapshot *sn, const struct target *tg)
 	}
 }
 
-/* The camera as the TUI frames a run: at its start, so that pictures of
- * successive steps line up. */
+/* The camera: by default on the cloth in the frames drawn (its box over
+ * all of them, lo to hi: a filmstrip's frames line up); with --frame
+ * scene as the TUI frames a run, at its start, so that separate pictures
+ * of successive steps line up too. */
 static void
-frame_camera(const struct snapshot *sn, struct camera *cam)
+frame_camera(const struct snapshot *sn, vec3 lo, vec3 hi, struct camera *cam)
 {
 	struct source_state s;
 	vec3 target;
 	double radius;
 
 	sn->src.state(sn->src.ctx, &s);
-	view_frame(s.sc, s.cl->x0, s.cl->n, &target, &radius);
+	if (sn->frame_scene)
+		view_frame(s.sc, s.cl->x0, s.cl->n, &target, &radius);
+	else
+		view_frame_cloth(s.sc, s.cl->x0, s.cl->n, lo, hi, &target, &radius);
 	camera_preset(cam, (enum view_preset)sn->preset, sn->centred ? sn->centre : target, radius);
 	cam->perspective = sn->perspective;
 	if (sn->zoom > 0)
@@ -411,13 +418,15 @@ snapshot_text(struct snapshot *sn)
 	struct source_state s;
 	struct camera cam;
 	const struct contact_event *ev;
+	vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
 	size_t nev;
 	int rc;
 
-	frame_camera(sn, &cam);
 	if (sn->ntargets > 0 && (rc = go_to(sn, &sn->targets[0])) != EXIT_OK)
 		return rc;
 	sn->src.state(sn->src.ctx, &s);
+	view_cloth_box(s.x, s.cl->n, &lo, &hi);
+	frame_camera(sn, lo, hi, &cam);
 	ev = sn->src.events(sn->src.ctx, &nev);
 	if (s.step == 0) {
 		ev = NULL;
@@ -502,6 +511,7 @@ snapshot_png(struct snapshot *sn)
 	struct picture_opts po;
 	struct drape_err err;
 	unsigned char *rgb = NULL;
+	vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
 	size_t k, n3;
 	double m = 0;
 	int rc = EXIT_OK, w, h, p;
@@ -517,7 +527,6 @@ snapshot_png(struct snapshot *sn)
 	if (sn->ntargets == 0 && (rc = add_target(sn, false, 0, 0)) != EXIT_OK)
 		return rc;
 	qsort(sn->targets, sn->ntargets, sizeof *sn->targets, target_order);
-	frame_camera(sn, &cam);
 	sn->src.state(sn->src.ctx, &s);
 	n3 = 3 * (size_t)s.cl->n;
 	if ((sh = calloc(sn->ntargets, sizeof *sh)) == NULL) {
@@ -544,9 +553,11 @@ snapshot_png(struct snapshot *sn)
 			goto done;
 		}
 		memcpy(sh[k].x, s.x, n3 * sizeof *sh[k].x);
+		view_cloth_box(s.x, s.cl->n, &lo, &hi);
 		for (p = 0; p < s.cl->n; p++)
 			m = fmax(m, fabs(sh[k].field[p]));
 	}
+	frame_camera(sn, lo, hi, &cam);
 	if ((fr = calloc(sn->ntargets, sizeof *fr)) == NULL) {
 		fprintf(stderr, "drape snapshot: out of memory\n");
 		rc = EXIT_RUNTIME;
@@ -679,6 +690,11 @@ take_option(struct snapshot *sn, int c, const char *arg)
 		return EXIT_OK;
 	case 'C':
 		return parse_centre(sn, arg);
+	case 'f':
+		if (strcmp(arg, "cloth") != 0 && strcmp(arg, "scene") != 0)
+			return bad("--frame", arg, "cloth or scene");
+		sn->frame_scene = strcmp(arg, "scene") == 0;
+		return EXIT_OK;
 	case 'o':
 		if (*arg == '\0')
 			return bad("--png", arg, "a file name");
@@ -783,6 +799,7 @@ parse_options(int argc, char **argv, struct snapshot *sn)
 		{ "perspective", no_argument, NULL, 'p' },
 		{ "zoom", required_argument, NULL, 'Z' },
 		{ "centre", required_argument, NULL, 'C' },
+		{ "frame", required_argument, NULL, 'f' },
 		{ "center", required_argument, NULL, 'C' },
 		{ "png", required_argument, NULL, 'o' },
 		{ "strip", required_argument, NULL, 'S' },

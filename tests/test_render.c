@@ -550,7 +550,7 @@ legend_clear_of_the_name(void **state)
 	struct picture_band b;
 	struct picture_frame fr;
 	struct picture_opts po = { 480, 120, COLOUR_WARP, 0.05, "a scene of a rather long name",
-		1 };
+		1, 0 };
 	unsigned char *rgb;
 	int w, h, y, s = 2, coloured = 0, x;
 
@@ -651,7 +651,9 @@ braille_dots_of_a_triangle(void **state)
 	    (struct rgb){ 255, 255, 255 }, CELL_SOLID);
 	glyphs_convert(&g);
 	assert_int_equal(g.kind[1 * 10 + 1], CELL_SOLID);
-	assert_int_equal(g.bits[1 * 10 + 1], 0xFF);
+	/* hatched, every other row of pixels (issue 30: without colour a
+	 * box and the cloth on it took the same dots): dots 1, 3, 4, 6 */
+	assert_int_equal(g.bits[1 * 10 + 1], 0x2D);
 	/* half blocks: 1 x 2 pixels a cell */
 	assert_int_equal(glyphs_resize(&g, GLYPHS_BLOCKS, 10, 5), 0);
 	assert_int_equal(g.im.h, 10);
@@ -661,10 +663,52 @@ braille_dots_of_a_triangle(void **state)
 	glyphs_convert(&g);
 	assert_int_equal(g.cp[0], 0x2588);		/* both halves */
 	assert_int_equal(g.cp[9], ' ');
+	/* an obstacle's cells are upper halves: hatched */
+	flat_triangle(&g.im, &cam, v3(-1, 1, 0.5), v3(1, 1, 0.5), v3(-1, -1, 0.5),
+	    (struct rgb){ 255, 255, 255 }, CELL_SOLID);
+	glyphs_convert(&g);
+	assert_int_equal(g.kind[0], CELL_SOLID);
+	assert_int_equal(g.cp[0], 0x2580);
 	glyphs_free(&g);
 }
 
 /* ---- through the binary ---- */
+
+/* The cloth's cells (its ramp and the marks) in a text snapshot. */
+static int
+cloth_cells(const char *out)
+{
+	int n = 0;
+
+	for (; *out != '\0'; out++)
+		n += strchr(RASTER_RAMP "oX", *out) != NULL && *out != '.';
+	return n;
+}
+
+/* Issue 30: at the strip's end its pile was a speck in the scene's
+ * framing; a snapshot frames the cloth in the frames drawn by default
+ * (--frame scene: as before). */
+static void
+snapshot_frames_the_cloth(void **state)
+{
+	struct result r;
+	int cloth, scene;
+
+	(void)state;
+	drape(&r, "snapshot --time 3 --size 80x24 '" TOP_SRCDIR "/replays/strip.drr'");
+	assert_int_equal(r.status, 0);
+	cloth = cloth_cells(r.out);
+	drape(&r, "snapshot --time 3 --size 80x24 --frame scene '" TOP_SRCDIR
+	    "/replays/strip.drr'");
+	assert_int_equal(r.status, 0);
+	scene = cloth_cells(r.out);
+	print_message("the strip's pile at 3 s: %d cells framed, %d in the scene's view\n",
+	    cloth, scene);
+	assert_true(cloth >= 3 * scene);
+	drape(&r, "snapshot --frame all '" TOP_SRCDIR "/replays/strip.drr'");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--frame 'all': expected cloth or scene"));
+}
 
 static void
 same_frame_same_bytes(void **state)
@@ -858,6 +902,7 @@ main(void)
 		cmocka_unit_test(time_labels_say_the_time),
 		cmocka_unit_test(braille_dots_of_a_triangle),
 		cmocka_unit_test(same_frame_same_bytes),
+		cmocka_unit_test(snapshot_frames_the_cloth),
 		cmocka_unit_test(unicode_snapshot),
 		cmocka_unit_test(bad_arguments),
 		cmocka_unit_test(plot_charts),

@@ -280,11 +280,12 @@ screen_of_a_replay(void **state)
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1500));
 	src.state(src.ctx, &s);
 	src.position(src.ctx, &p);
-	si = (struct status_info){ &s, 0, "replay", 1, "no", &p };
+	si = (struct status_info){ &s, 0, "replay", "1x", "no", &p };
 	screen_status(line, 80, &si);
 	assert_true(strlen(line) <= 80);
 	assert_non_null(strstr(line, "tablecloth-rk4.drr replay step 1500 "));
 	assert_non_null(strstr(line, "frame 11/18@1359"));
+	assert_non_null(strstr(line, " 1x"));
 	screen_status(line, 150, &si);
 	assert_non_null(strstr(line, "step 1500 of 2265"));
 	assert_int_equal(evlog_init(&log, s.cl->n), 0);

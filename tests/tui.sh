@@ -10,7 +10,9 @@
 # terminal gone without SIGHUP ends the run as SIGHUP does (exit 129).
 # A blow-up and an error (exit 3 and 1) each named so.
 # At 80 x 24: u cycles the glyphs, c the colouring, with its legend (the
-# scale and its numbers) at the foot of the view.
+# scale and its numbers) at the foot of the view. The pace of play (real
+# time, + - *), the key line's whole items, f following the cloth, and the
+# box's own characters without colour (issue 30).
 # Skipped (77) without tmux. Waits poll the pane, with a timeout.
 set -u
 
@@ -453,6 +455,76 @@ glyphs_session() {
 glyphs_session "LC_ALL=C.UTF-8" ""
 glyphs_session "LC_ALL=C.UTF-8" "-C"
 glyphs_session "LC_ALL=C" ""
+
+top=$(cd "$(dirname "$0")/.." && pwd)
+
+# issue 30, the first minute: the Quick start's tablecloth was over in
+# 1.5 s. It plays at real time (the status line says 1x), + and - double
+# and halve that, * runs as fast as it can, and the end pauses on the last
+# step; the 80-column key line holds whole items only (it ended "v v")
+echo "== the pace of play, the key line"
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' run '$top/scenes/tablecloth.scene'; echo EXIT=\$?" Enter
+	if wait_for 'E [0-9.e+-]*J 1x.* running'; then
+		[ "$(tail -n 1 "$tmp/screen")" = "? help  q quit  space run/pause  +/- speed  * max  n step  f follow  z/Z zoom" ] ||
+			fail "the key line at 80 columns: '$(tail -n 1 "$tmp/screen")'"
+		tm send-keys -t t +
+		wait_for '^2x real time' && grep -q 'J 2x' "$tmp/screen" || fail "+ did not double the pace"
+		tm send-keys -t t - -
+		wait_for '^1/2x real time' && grep -q 'J 1/2x' "$tmp/screen" || fail "- did not halve it"
+		tm send-keys -t t '*'
+		wait_for '^as fast as it can' && grep -q 'J max' "$tmp/screen" || fail "* is not flat out"
+		# flat out to the end, where it stays
+		wait_for 'step 200 .* end' && wait_for '^end of the run'
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+' && grep -q 'EXIT=0' "$tmp/screen" || fail "the paced run did not exit 0"
+	fi
+	tm kill-session -t t
+fi
+
+# the cloth chars (the ramp's, and the marks) in the view of a 80 x 24
+# screen (its first 49 columns, the separator excluded), from its second row
+view_count() { sed -n '2,23p' "$tmp/screen" | cut -c1-49 | tr -cd "$1" | wc -c; }
+
+# issue 30, the view: at the strip's end its pile was a speck; f follows
+# the cloth, framed. Without colour the box and the cloth took the same
+# characters: the obstacles have their own
+echo "== f follows the cloth; the box's own characters"
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' replay '$top/replays/strip.drr'; echo EXIT=\$?" Enter
+	if wait_for 'strip.drr +replay +step 0 '; then
+		tm send-keys -t t End
+		wait_for 'replay end +step 300 '	# drawn with its view
+		before=$(view_count ':=+*#%@oX-')
+		tm send-keys -t t f
+		if wait_for '^view: following the cloth'; then
+			after=$(view_count ':=+*#%@oX-')
+			echo "cloth cells at the strip's end: $before, following it $after"
+			[ "$after" -ge $((3 * before)) ] || fail "f: $before cloth cells, then $after"
+		fi
+		tm send-keys -t t f
+		wait_for '^view: the whole scene'
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+'
+	fi
+	tm kill-session -t t
+fi
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' run -C --paused '$top/scenes/tablecloth.scene'; echo EXIT=\$?" Enter
+	if wait_for '^\? help'; then
+		cloth=$(view_count ':=+*#%@')
+		solid=$(view_count "',;!|lIH")
+		echo "monochrome at step 0: $cloth cloth cells, $solid box cells"
+		[ "$cloth" -gt 50 ] && [ "$solid" -gt 50 ] ||
+			fail "without colour the box and the cloth do not differ ($cloth, $solid)"
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+'
+	fi
+	tm kill-session -t t
+fi
 
 # not on a terminal
 "$DRAPE" run --until 1ms "$tmp/fall.scene" </dev/null >"$tmp/out" 2>"$tmp/err"

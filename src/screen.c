@@ -213,7 +213,7 @@ screen_node(struct text *t, const struct source_state *s, int node, const vec3 *
 			snprintf(with, sizeof with, "ob%d", e->obstacle);
 		else
 			snprintf(with, sizeof with, "%d", e->other);
-		text_add(t, "%6ld %3s %5s %+6.3f %+6.3f", e->step, short_type[e->type], with,
+		text_add(t, "%6ld %3s %5s %+6.3f %+6.3f", step_shown(e->step), short_type[e->type], with,
 		    e->vn_before, e->vn_after);
 	}
 	if (k == 0)

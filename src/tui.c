@@ -74,6 +74,12 @@ struct tui {
 	double speed;		/* simulated over wall time, measured */
 	double mark_wall, mark_t;
 	bool replay;		/* the source seeks */
+	/* A replay's keys move a target and one seek goes there when the
+	 * keys typed so far are read: a seek takes up to half a second the
+	 * first time (a digest's events are recomputed), and keys typed
+	 * meanwhile each made another, landing late. */
+	bool seek_pending;
+	long seek_to;
 	bool prompt;
 	bool prompt_step;	/* the prompt asks for a step, else a node */
 	char input[16];
@@ -142,15 +148,39 @@ selected_events(struct tui *ui)
 	return ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
 }
 
+/* A replay's move, from where the keys before it lead: none is said when
+ * it cannot move. The seek itself waits for flush_seek. */
 static void
 seek(struct tui *ui, enum source_seek how, long step, const char *none)
 {
+	struct source_state s;
+	long from, to;
+
 	ui->running = false;
-	if (!ui->src->seek(ui->src->ctx, how, step)) {
+	ui->src->state(ui->src->ctx, &s);
+	from = ui->seek_pending ? ui->seek_to : s.step;
+	if ((to = ui->src->target(ui->src->ctx, how, step, from)) < 0) {
 		say(ui, "%s", none);
 		return;
 	}
+	ui->seek_pending = true;
+	ui->seek_to = to;
+}
+
+/* The one seek to where the keys read so far lead. */
+static void
+flush_seek(struct tui *ui)
+{
+	if (!ui->seek_pending)
+		return;
+	ui->seek_pending = false;
+	if (!ui->src->seek(ui->src->ctx, SOURCE_GOTO, ui->seek_to)) {
+		say(ui, "out of memory for step %ld", ui->seek_to);
+		return;
+	}
 	rebuild_log(ui);
+	if (ui->ended)
+		say(ui, "end of the replay");
 }
 
 /* One step; false when there is none (the end, or a blow-up). */
@@ -243,7 +273,7 @@ seek_event(struct tui *ui)
 	ui->src->state(ui->src->ctx, &s);
 	if (selected_events(ui) > before)
 		say(ui, "node %d: an event at step %ld (%ld %s on)", ui->selected,
-		    evlog_get(&ui->log, ui->selected, 0)->step, steps, unit);
+		    step_shown(evlog_get(&ui->log, ui->selected, 0)->step), steps, unit);
 	else if (!ui->ended && !ui->res->blown_up)
 		say(ui, "node %d: no event in %ld %s (to step %ld); e again goes on",
 		    ui->selected, steps, unit, s.step);
@@ -574,7 +604,7 @@ act_frame(struct tui *ui, int ch)
 	if (ch == KEY_LEFT)
 		seek(ui, SOURCE_FRAME_PREV, 0, "at the first frame");
 	else
-		act_step(ui, ch);	/* one frame, or the end */
+		seek(ui, SOURCE_FRAME_NEXT, 0, "end of the replay");
 }
 
 static void
@@ -636,6 +666,13 @@ static const struct binding bindings[] = {
 	{ KEYS_BOTH, { 'q' }, "q", "quit", act_quit },
 };
 
+/* The keys that move in a replay, whose seeks wait for flush_seek. */
+static bool
+moves(void (*act)(struct tui *, int))
+{
+	return act == act_frame || act == act_keyframe || act == act_ends;
+}
+
 static bool
 applies(const struct binding *b, bool replay)
 {
@@ -674,6 +711,10 @@ key(struct tui *ui, int ch)
 			continue;
 		for (k = 0; bindings[i].keys[k] != 0; k++)
 			if (bindings[i].keys[k] == ch) {
+				/* a key that is no move sees the place the moves
+				 * before it lead to */
+				if (!moves(bindings[i].act))
+					flush_seek(ui);
 				bindings[i].act(ui, ch);
 				return;
 			}
@@ -1090,12 +1131,14 @@ loop(struct tui *ui)
 				quit_signal = SIGHUP;	/* ends as a hangup would */
 			continue;
 		}
-		/* every key already typed, then one redraw */
+		/* every key already typed, one seek to where they lead, then
+		 * one redraw */
 		do {
 			if (ch != KEY_RESIZE)
 				key(ui, ch);
 			timeout(0);
 		} while (!ui->quit && (ch = getch()) != ERR);
+		flush_seek(ui);
 		ui->dirty = true;
 	}
 }

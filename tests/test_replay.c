@@ -862,7 +862,8 @@ digest_mismatch(void **state)
 			key = (long)i;
 	}
 	assert_true(ndigest >= 4 && second > 0 && key > 0);
-	lo = (long)r.chunk[second].first_step;
+	/* as shown: the step from state k to k + 1 is step k + 1 */
+	lo = step_shown((long)r.chunk[second].first_step);
 	hi = lo + (long)r.chunk[second].count - 1;
 	snprintf(steps, sizeof steps, "the events of steps %ld to %ld are unavailable", lo, hi);
 	read_tampered(buf, len, &tr, &nok, &nout, why, sizeof why);
@@ -907,7 +908,7 @@ digest_mismatch(void **state)
 		}
 		free(text);
 		for (i = 0; i < tr.nev; i++)
-			n += tr.ev[i].step < lo || tr.ev[i].step > hi;
+			n += step_shown(tr.ev[i].step) < lo || step_shown(tr.ev[i].step) > hi;
 		assert_int_equal(inside, 0);
 		assert_int_equal(lines, 1 + n);
 		assert_true(n > 0 && n < tr.nev);
@@ -927,8 +928,9 @@ digest_mismatch(void **state)
 	read_tampered(bad, blen, &tr, &nok, &nout, why, sizeof why);
 	print_message("keyframe moved: %zu chunks exact, %zu unavailable: %s\n", nok, nout, why);
 	assert_true(nok >= 1 && nout >= 2);
-	/* steps 24 to 47 step onto the keyframe at 40 from the one at 0 */
-	assert_non_null(strstr(why, "the events of steps 24 to 47 are unavailable: the state "
+	/* steps 25 to 48 (as shown: from states 24 to 47) step onto the
+	 * keyframe at state 40 from the one at 0 */
+	assert_non_null(strstr(why, "the events of steps 25 to 48 are unavailable: the state "
 	    "recomputed at step 40 is not the keyframe's"));
 	free(bad);
 	replay_close(&r);

@@ -145,7 +145,8 @@ status_and_panels(void **state)
 	assert_string_equal(t.line[0], "node 5 (i 1, j 1)");
 	assert_non_null(strstr(t.line[3], "f N"));
 	assert_non_null(strstr(t.line[4], "events: 1"));
-	assert_non_null(strstr(t.line[6], "6 n-f     7 -0.500 +0.100"));
+	/* the event of step 6 (from state 6 to 7) is shown as step 7's */
+	assert_non_null(strstr(t.line[6], "7 n-f     7 -0.500 +0.100"));
 	for (k = 0; k < t.n; k++)
 		if (strlen(t.line[k]) > 30 || strchr(t.line[k], '\n') != NULL)
 			fail_msg("node line %d is '%s'", k, t.line[k]);

@@ -34,10 +34,10 @@
  * contact holds like a stiff spring instead of sliding. */
 #define FRICTION_SLIP 1e-3
 
-/* The Newton iterations' tolerance when the scene sets none, over
- * gravity's magnitude (1 m/s^2 without gravity): the largest residual
- * acceleration left, which changes a velocity by beta times it. */
-#define DEFAULT_TOL 1e-3
+/* Newton's iterations are also done when the largest residual
+ * acceleration left is this part of gravity's (of 1 m/s^2 without
+ * gravity): it changes a velocity by beta times it. */
+#define RESIDUAL_TOL 1e-3
 
 /* Newton's iterations have converged once the step they ask changes no
  * node's velocity by more than this (m/s; it moves the node that times
@@ -47,11 +47,12 @@
  * springs, sheared corners) the system's positive stand-in for the
  * stiffness makes the convergence linear, at 0.5 to 0.9 an iteration. */
 #define NEWTON_VTOL 1e-4
-/* ... or than this part of the largest motion of the step: where a cloth
- * crumples on impact the iterations' linear tail would otherwise take
- * twice as many (peers' table at 25^2, first 0.35 s: 9.4 a step against
- * 16.6 at 1e-3, 2.2e10 instructions against 1.1e10) for corrections of a
- * hundredth of what the step moved. */
+/* ... or than this part of the largest motion of the step, when the scene
+ * sets no tolerance: where a cloth crumples on impact the iterations'
+ * linear tail would otherwise take twice as many (peers' table at 25^2,
+ * first 0.35 s: 9.8 a step, 1.0e10 instructions; 1.7e10 at 1e-3, 8.9e9
+ * at 3e-2, 5.1e9 at 0.1) for corrections of a hundredth of what the step
+ * moved. */
 #define NEWTON_REL 1e-2
 
 /* The energy correction scales the free nodes' velocities by at most this
@@ -93,7 +94,8 @@ bdf2_init(struct bdf2 *b, const struct scene *sc, const struct forces *fo,
 	b->sc = sc;
 	b->fo = fo;
 	b->pr = pr;
-	b->tol = (tol > 0 ? tol : DEFAULT_TOL) * (gmag > 0 ? gmag : 1);
+	b->tol = RESIDUAL_TOL * (gmag > 0 ? gmag : 1);
+	b->rel = tol > 0 ? tol : NEWTON_REL;
 	b->max_newton = 40;
 	b->max_cg = 400;
 	for (i = 0; i < cl->nsprings; i++)
@@ -1238,7 +1240,7 @@ newton(struct bdf2 *b, const double *y)
 			return -1;
 		b->last_step = max_node_norm(b->dx, n3 / 3);
 		if (b->last_step <= NEWTON_VTOL * b->beta ||
-		    b->last_step <= NEWTON_REL * step_motion(b, y)) {
+		    b->last_step <= b->rel * step_motion(b, y)) {
 			for (i = 0; i < n3; i++)	/* too small to search along */
 				b->x[i] += b->dx[i];
 			converged = true;

@@ -127,6 +127,10 @@ struct bdf2 {
 	/* the pairs that push at the iterate (its system's), and those whose
 	 * terms the potential takes (the line search's may push ahead) */
 	size_t *act, nact, *live, nlive;
+	/* the pairs that may push before the nodes drift (bdf2.c near_pairs) */
+	size_t *near, nnear;
+	double near_reach, drift;
+	bool near_ok;
 	struct contacts *ct;	/* the step's pairs, and their geometry */
 	const struct collide *col;
 	/* the normals along which each node's history is made anew at the

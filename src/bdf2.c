@@ -1003,22 +1003,31 @@ max_node_norm(const double *a, size_t n)
 }
 
 /* The pairs that may push somewhere along dx (up to EXTRAPOLATE_MOST of
- * it) from x: a pair's gap sum w x n0 changes by at most the sum of |w|,
- * 2, times the farthest any node moves. */
+ * it) from x: a pair's gap sum w x n0 is linear in x, so along x + a dx it
+ * is its gap plus a times its rate sum w n0 . dx, exactly. The near pairs
+ * hold every pair that can: a gap moves by at most twice the farthest any
+ * node moves. */
 static void
 live_pairs(struct bdf2 *b)
 {
 	size_t j, n = (size_t)b->fo->cl->n;
-	double ahead;
 
 	if (b->ct == NULL)
 		return;
-	ahead = 2 * EXTRAPOLATE_MOST * max_node_norm(b->dx, n);
-	need_near(b, b->x, ahead);
+	need_near(b, b->x, 2 * EXTRAPOLATE_MOST * max_node_norm(b->dx, n));
 	b->nlive = 0;
-	for (j = 0; j < b->nnear; j++)
-		if (b->pt[b->near[j]].gap < b->ct->thickness + ahead)
+	for (j = 0; j < b->nnear; j++) {
+		const struct contact_pair *cp = &b->ct->pair[b->near[j]];
+		double rate = 0;
+		int k;
+
+		for (k = 0; k < 4; k++)
+			if (cp->vert[k] < b->col->ncloth)
+				rate += cp->w[k] * v3_dot(v3_load(cp->n0), v3_load(b->dx + 3 * cp->vert[k]));
+		if (b->pt[b->near[j]].gap + EXTRAPOLATE_MOST * fmin(rate, 0) < b->ct->thickness ||
+		    b->pt[b->near[j]].lambda > 0)
 			b->live[b->nlive++] = b->near[j];
+	}
 }
 
 /* A full step taken, Phi fell to phi1 along dx: where the parabola through

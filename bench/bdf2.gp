@@ -25,14 +25,17 @@ set xlabel "nodes (log)"
 set ylabel "wall s per simulated s (log)"
 set key top left
 set title sprintf("refinement: the peers' 0.24 m table, first 0.25 s (%s)", stamp)
-sel(m) = (strcol(1) eq m && $3 < 1) ? $5 : NaN
+# the rows of one method, for lines (ours: the refinement's, under a
+# second; the peers' file has no whole runs)
+rows(f, m) = sprintf("< awk -F, '$1 == \"%s\" && $5 != \"-\"' '%s'", m, f)
+ours(m) = sprintf("< awk -F, '$1 == \"%s\" && $3 + 0 < 1 && $5 != \"-\"' '%s'", m, csv)
 have_peers = (peers ne "" && system("test -r '".peers."' && echo 1") eq "1")
 if (have_peers) {
-	plot csv skip 1 using 2:(sel("bdf2")) with linespoints pt 7 ps ps lw 2 title "drape bdf2", \
-	     csv skip 1 using 2:(sel("fast")) with linespoints pt 5 ps ps title "drape fast (bvh)", \
-	     peers skip 1 using 2:(strcol(1) eq "blender" ? $5 : NaN) with linespoints pt 9 ps ps title "Blender", \
-	     peers skip 1 using 2:(strcol(1) eq "bullet" ? $5 : NaN) with linespoints pt 11 ps ps title "Bullet classic"
+	plot ours("bdf2") using 2:5 with linespoints pt 7 ps ps lw 2 title "drape bdf2", \
+	     ours("fast") using 2:5 with linespoints pt 5 ps ps title "drape fast (bvh)", \
+	     rows(peers, "blender") using 2:5 with linespoints pt 9 ps ps title "Blender", \
+	     rows(peers, "bullet") using 2:5 with linespoints pt 11 ps ps title "Bullet classic"
 } else {
-	plot csv skip 1 using 2:(sel("bdf2")) with linespoints pt 7 ps ps lw 2 title "drape bdf2", \
-	     csv skip 1 using 2:(sel("fast")) with linespoints pt 5 ps ps title "drape fast (bvh)"
+	plot ours("bdf2") using 2:5 with linespoints pt 7 ps ps lw 2 title "drape bdf2", \
+	     ours("fast") using 2:5 with linespoints pt 5 ps ps title "drape fast (bvh)"
 }

@@ -8,7 +8,7 @@
 # both 100 g/m2, E*t = 50 N/m, G*t = 5 N/m, B = 1 uN*m, collision
 # thickness a quarter of the spacing, friction 0.1, self-collision on, no
 # drag. drape runs rk4, implicit-euler, fast and fast with
-# collision.broad = bvh. Every timed process is pinned to one core
+# collision.broad = bvh, and bdf2 with bvh (issue 28). Every timed process is pinned to one core
 # (taskset; Blender's -t 1 still runs a second busy thread); each reports
 # the wall time of its stepping alone (not its start-up, nor the writing
 # of frames); the figure is the median over BENCH_RUNS rounds, and the
@@ -19,8 +19,8 @@
 # floor are counted here; drape's own frames are audited by
 # `drape check --every 1` on the scene (every 20 ms).
 # Then the refinement: the table's first 0.25 s at 25^2, 50^2 and 100^2
-# (the same 0.24 m, finer), Blender and Bullet, BENCH_PEERS_REFINE_RUNS
-# rounds.
+# (the same 0.24 m, finer), Blender, Bullet, and drape's bdf2 and fast
+# (both with bvh) in the same rounds, BENCH_PEERS_REFINE_RUNS rounds.
 #
 # Skips (exit 0, saying why) without blender, without Bullet's float64
 # build (pkg-config bullet-float64; Debian's libbullet-dev), without g++
@@ -164,7 +164,7 @@ audit_drape() {
 }
 
 # ---- table and strip, whole ----
-methods="blender bullet rk4 implicit-euler fast fast+bvh"
+methods="blender bullet rk4 implicit-euler fast fast+bvh bdf2+bvh"
 csv=$results/peers.csv
 raw=$tmp/raw.txt
 : >"$raw"
@@ -246,7 +246,7 @@ if want refine; then
 		h=$(table_h "$n")
 		mass=$(node_mass 0.0576 $((n * n)))
 		q=$(awk -v n="$n" 'BEGIN { q = int(n / 5 + 0.5); print q < 5 ? 5 : q }')
-		for m in blender bullet; do
+		for m in blender bullet bdf2+bvh fast+bvh; do
 			: >"$tmp/rw"
 			rc=0
 			for r in $(seq 1 "$rruns"); do
@@ -256,6 +256,7 @@ if want refine; then
 				case $m in
 				blender) run_blender "$tmp/r$n.obj" "$out" "$frames" "$q" "$mass" "$h" 1 ;;
 				bullet) run_bullet "$tmp/r$n.obj" "$out" 0.25 "$frames" "$mass" "$h" 1 ;;
+				*) run_drape "$tmp/r$n.scene" "$m" 0.25 ;;
 				esac
 				rc=$?
 				[ $rc = 0 ] || { echo "$prog: refinement $n^2 $m exited $rc:"; tail -n 3 "$tmp/err"; } >&2
@@ -263,7 +264,11 @@ if want refine; then
 			done
 			w=$(awk '{ print $1 }' "$tmp/rw" | median)
 			wps=$(awk '{ print $1 / $2 }' "$tmp/rw" | median)
-			read -r pe pw ie iw fr < <(audit_frames "$tmp/rframes-$n-$m" table)
+			case $m in
+			blender | bullet) read -r pe pw ie iw fr < <(audit_frames "$tmp/rframes-$n-$m" table) ;;
+			*) edit_scene "$tmp/r$n.scene" "simulation.duration=0.25 s" >"$tmp/r$n-a.scene"
+				read -r pe pw ie iw fr < <(audit_drape "$tmp/r$n-a.scene" "$m") ;;
+			esac
 			[ "$m" = blender ] || q=-
 			echo "$m,$((n * n)),$q,$w,$(awk -v x="$wps" 'BEGIN { if (x == "-") print x; else printf "%.3g", x }'),$pe,$pw,$([ $rc = 0 ] && echo ok || echo "exit $rc")" >>"$rcsv"
 			q=$(awk -v n="$n" 'BEGIN { q = int(n / 5 + 0.5); print q < 5 ? 5 : q }')

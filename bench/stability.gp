@@ -25,10 +25,10 @@ if (!exists("until_t")) until_t = "?"
 if (!exists("scene")) scene = "?"
 if (!exists("damping")) damping = "?"
 
-methods = "euler symplectic-euler rk2 rk4 implicit-euler fast"
-nm = 4	# the methods with a theory limit; implicit-euler and fast follow
-array col[6] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4", "#8c564b", "#d62728"]
-array pt[6] = [4, 6, 8, 7, 9, 5]
+methods = "euler symplectic-euler rk2 rk4 implicit-euler fast bdf2"
+nm = 4	# the methods with a theory limit; implicit-euler, fast and bdf2 follow
+array col[7] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4", "#8c564b", "#d62728", "#000000"]
+array pt[7] = [4, 6, 8, 7, 9, 5, 13]
 array thname[4] = ["c/omega^2", "2/omega", "(4c)^{1/3}/omega^{4/3}", "2 sqrt(2)/omega"]
 T = until_t + 0
 if (T > 0) set yrange [*:4 * T]
@@ -51,6 +51,8 @@ if (term eq "dumb") {
 		sel("implicit-euler", "above", "$1, $6") using 1:2 with points pt "^" title "implicit-euler: no limit up to T", \
 		sel("fast", "ok", "$1, $6") using 1:2 with points pt "f" title "fast", \
 		sel("fast", "above", "$1, $6") using 1:2 with points pt "F" title "fast: no limit up to T", \
+		sel("bdf2", "ok", "$1, $6") using 1:2 with points pt "b" title "bdf2", \
+		sel("bdf2", "above", "$1, $6") using 1:2 with points pt "B" title "bdf2: no limit up to T", \
 		for [i = 1:4] sel(word(methods, i), ".", "$1, $8") using 1:2 with lines title "theory ". word(methods, i)
 } else {
 	set terminal pngcairo size 1100, 750 font "Sans,11"
@@ -59,9 +61,9 @@ if (term eq "dumb") {
 	set title sprintf("drape: largest stable dt by bisection on blow-up within T = %s s, %s (damping c = %s /s)\n%s; solid: measured; dashed: theory from the Gershgorin omega\ndown triangle: limit below the smallest dt searched; up triangle: no blow-up up to the largest", \
 		until_t, scene, damping, stamp)
 	set key outside right top spacing 1.2
-	plot for [i = 1:6] sel(word(methods, i), "ok", "$1, $6") using 1:2 with linespoints \
+	plot for [i = 1:7] sel(word(methods, i), "ok", "$1, $6") using 1:2 with linespoints \
 			lc rgb col[i] pt pt[i] ps 1.4 lw 2 title word(methods, i) . " (measured)", \
-		for [i = 1:6] sel(word(methods, i), "below", "$1, $7") using 1:2 with points \
+		for [i = 1:7] sel(word(methods, i), "below", "$1, $7") using 1:2 with points \
 			lc rgb col[i] pt 11 ps 1.6 notitle, \
 		for [i = 1:4] sel(word(methods, i), "above", "$1, $6") using 1:2 with points \
 			lc rgb col[i] pt 9 ps 1.8 notitle, \
@@ -69,6 +71,8 @@ if (term eq "dumb") {
 			lc rgb col[5] pt 9 ps 1.8 title "implicit-euler: no limit up to T", \
 		sel("fast", "above", "$1, $6") using 1:2 with points \
 			lc rgb col[6] pt 9 ps 1.3 title "fast: no limit up to T", \
+		sel("bdf2", "above", "$1, $6") using 1:2 with points \
+			lc rgb col[7] pt 9 ps 1.0 title "bdf2: no limit up to T", \
 		for [i = 1:4] sel(word(methods, i), ".", "$1, $8") using 1:2 with lines \
 			lc rgb col[i] dt 2 lw 1.5 title word(methods, i) . ": " . thname[i], \
 		T lc rgb "#8c564b" dt 3 lw 1.5 title sprintf("T = %s s (one step)", until_t)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Stability benchmark: the largest stable step of each explicit integrator,
-# and of implicit-euler and fast, as the cloth's stretch stiffness grows,
+# and of implicit-euler, fast and bdf2, as the cloth's stretch stiffness grows,
 # against the limit theory gives.
 #
 # For each stiffness factor s of BENCH_ST_FACTORS it writes a copy of the
@@ -13,9 +13,9 @@
 # and 8 / omega, down to a ratio of 1 + BENCH_ST_REL between the stable and
 # the unstable step.
 #
-# fast (position-based substeps, the stretch solved along the yarns) is
-# searched as implicit-euler is: its substep follows the soft forces, so
-# its step has no limit of the explicit kind to find.
+# fast (position-based substeps, the stretch solved along the yarns) and
+# bdf2 (a Newton solve over the whole cloth a step) are searched as
+# implicit-euler is: neither has a limit of the explicit kind to find.
 #
 # implicit-euler is stable at any step for a linear system, so 8 / omega (its
 # first probe there) would not blow up and the search would end at once,
@@ -65,7 +65,7 @@ factors=${BENCH_ST_FACTORS:-1 4 16 64 256}
 until_t=${BENCH_ST_UNTIL:-0.05}
 maxsteps=${BENCH_ST_MAXSTEPS:-1e6}
 rel=${BENCH_ST_REL:-0.01}
-methods="euler symplectic-euler rk2 rk4 implicit-euler fast"
+methods="euler symplectic-euler rk2 rk4 implicit-euler fast bdf2"
 
 die() { echo "stability.sh: $*" >&2; exit 2; }
 isnum() { awk -v t="$1" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }'; }
@@ -151,14 +151,14 @@ for s in $factors; do
 	isnum "$omega" || die "factor $s: no omega in the run summary"
 	for m in $methods; do
 		th=$(awk -v m="$m" -v w="$omega" -v c="$damping" 'BEGIN {
-			if (m == "implicit-euler" || m == "fast") { print "-"; exit }
+			if (m == "implicit-euler" || m == "fast" || m == "bdf2") { print "-"; exit }
 			if (m == "rk4") t = 2 * sqrt(2) / w
 			else if (m == "symplectic-euler") t = 2 / w
 			else if (m == "euler") t = c / (w * w)
 			else t = (4 * c) ^ (1 / 3) / w ^ (4 / 3)
 			printf "%.6e", t }')
 		lo=$(awk -v u="$until_t" -v n="$maxsteps" 'BEGIN { printf "%.6e", u / n }')
-		if [ $m = implicit-euler ] || [ $m = fast ]; then
+		if [ $m = implicit-euler ] || [ $m = fast ] || [ $m = bdf2 ]; then
 			hi=$(awk -v u="$until_t" 'BEGIN { printf "%.6e", u }')
 		else
 			hi=$(awk -v w="$omega" 'BEGIN { printf "%.6e", 8 / w }')
@@ -168,7 +168,7 @@ for s in $factors; do
 		rm -f "$tmp/stable.out" "$tmp/smallest.out"
 		dsmall=-
 		[ -t 2 ] && printf '\r  factor %s %s ...          ' "$s" "$m" >&2
-		if [ $m = implicit-euler ] || [ $m = fast ]; then
+		if [ $m = implicit-euler ] || [ $m = fast ] || [ $m = bdf2 ]; then
 			# the scan, from the smallest step up: T / 10^(k/2) >= 1 / omega
 			scan=$(awk -v u="$until_t" -v w="$omega" -v lo="$lo" 'BEGIN {
 				for (k = 0; u / 10 ^ (k / 2) >= 1 / w && u / 10 ^ (k / 2) >= lo; k++) d[k] = u / 10 ^ (k / 2)
@@ -226,7 +226,7 @@ for s in $factors; do
 		note=
 		[ $status = above ] && note="$result"
 		[ $m = implicit-euler ] && note="${note:+$note; }at the largest stable dt: $cgi CG it./solve, $unc unconverged ($unc_all over all probes), energy at T $en J ($ensmall J at dt $dsmall)"
-		[ $m = fast ] && note="${note:+$note; }energy at T $en J ($ensmall J at dt $dsmall)"
+		case $m in fast | bdf2) note="${note:+$note; }energy at T $en J ($ensmall J at dt $dsmall)" ;; esac
 		[ -t 2 ] && printf '\r%60s\r' '' >&2
 		printf "$hdr" "$s" "$omega" "$m" "$status" "$lo" "$hi" "$th" "$ratio" "$dw" "$n" "$note"
 	done
@@ -241,7 +241,7 @@ theory dt: rk4 2 sqrt(2) / omega, symplectic-euler 2 / omega, euler c / omega^2,
   rk2 (4 c)^(1/3) / omega^(4/3), omega the Gershgorin bound, c = $damping /s;
   implicit-euler: any dt (for a linear system). It is searched up to T,
   probing T / 10^(k/2) from the smallest >= 1 / omega up (CG tolerance: $tol);
-  fast is searched the same way (its substeps follow the soft forces);
+  fast and bdf2 are searched the same way;
   energy at T: the total energy at the end of the run at the largest stable dt,
   and of the smallest dt scanned (drape's blow-up check is on the speed and on
   springs torn past 10x their length: a run that does not blow up may still

@@ -22,14 +22,14 @@ if (!exists("ncpu")) ncpu = "?"
 if (!exists("itols")) itols = "1e-8 1e-3"
 
 nsc = words(scenes)
-# the series: the five explicit methods and fast, then implicit-euler once
-# per CG tolerance (ntol at most 2)
-nexp = 6
+# the series: the five explicit methods, fast and bdf2, then implicit-euler
+# once per CG tolerance (ntol at most 2)
+nexp = 7
 ntol = words(itols) > 2 ? 2 : words(itols)
 nser = nexp + ntol
-methods = "euler symplectic-euler rk2 rk4 dopri5 fast"
-array col[8] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4", "#d62728", "#8c564b", "#e377c2", "#17becf"]
-array pt[8] = [4, 6, 8, 7, 5, 9, 13, 3]
+methods = "euler symplectic-euler rk2 rk4 dopri5 fast bdf2"
+array col[9] = ["#9467bd", "#2ca02c", "#ff7f0e", "#1f77b4", "#d62728", "#8c564b", "#000000", "#e377c2", "#17becf"]
+array pt[9] = [4, 6, 8, 7, 5, 9, 11, 13, 3]
 meth(i) = i <= nexp ? word(methods, i) : "implicit-euler"
 tolof(i) = i <= nexp ? "" : word(itols, i - nexp)
 

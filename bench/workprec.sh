@@ -13,7 +13,8 @@
 # they reach far above the others') once for each CG tolerance of
 # BENCH_WP_IMPLICIT_TOLS (the same `tolerance` key, which for implicit-euler
 # is the relative residual of its linear solve), and fast (the
-# position-based fast path) at BENCH_WP_FAST_FACTORS. Each run goes to the same end
+# position-based fast path) at BENCH_WP_FAST_FACTORS, and bdf2 at
+# BENCH_WP_BDF2_FACTORS. Each run goes to the same end
 # time (--until) and writes its final mesh (--final-obj); the error is the
 # largest distance between a node there and the same node of the
 # reference's final mesh. The CPU time (user + system, bash's time) is the
@@ -35,6 +36,7 @@
 #   BENCH_WP_IMPLICIT_FACTORS  dt * omega of the implicit-euler runs (default 1024 512 ... 0.0625)
 #   BENCH_WP_IMPLICIT_TOLS     implicit-euler CG tolerances (default "1e-8 1e-3")
 #   BENCH_WP_FAST_FACTORS  dt * omega of the fast runs (default: implicit-euler's)
+#   BENCH_WP_BDF2_FACTORS  dt * omega of the bdf2 runs (default: implicit-euler's)
 #   BENCH_WP_REF           dt * omega of the RK4 reference (default 1/64)
 #   BENCH_WP_MAXSTEPS      skip a fixed-step run of more steps than this (default 1e6)
 #   BENCH_WP_TARGET        error (m) for the cost-ratio table (default 1e-5)
@@ -73,6 +75,9 @@ itols=${BENCH_WP_IMPLICIT_TOLS:-1e-8 1e-3}
 # substeps for its soft forces, so it too runs at any step; the same
 # factors as implicit-euler's.
 ffactors=${BENCH_WP_FAST_FACTORS:-$ifactors}
+# bdf2 (the implicit step over the whole cloth, bdf2.h): stable at any
+# step too, at its default Newton tolerance; the same factors.
+bfactors=${BENCH_WP_BDF2_FACTORS:-$ifactors}
 ref_f=${BENCH_WP_REF:-0.015625}
 maxsteps=${BENCH_WP_MAXSTEPS:-1e6}
 target=${BENCH_WP_TARGET:-1e-5}
@@ -206,6 +211,7 @@ for p in $scenes; do
 			for f in $ifactors; do echo "implicit-euler dt $f $t"; done
 		done
 		for f in $ffactors; do echo "fast dt $f"; done
+		for f in $bfactors; do echo "bdf2 dt $f"; done
 	} >"$tmp/points"
 	sed "/^[ \t]*\[simulation\]/,/^[ \t]*\[/{/^[ \t]*tolerance[ \t]*=/d}" "$src" >"$tmp/base.scene"
 	while read -r m kind par itol; do
@@ -310,6 +316,7 @@ END {
 	nt = split(itols, ts, " ")
 	for (i = 1; i <= nt; i++) ms[++nm] = label("implicit-euler", ts[i])
 	ms[++nm] = "fast"
+	ms[++nm] = "bdf2"
 	for (s = 1; s <= ns; s++) {
 		sc = order[s]; r = ((sc, "rk4") in best) ? best[sc, "rk4"] : 0
 		for (i = 1; i <= nm; i++) {

@@ -34,10 +34,10 @@
  * contact holds like a stiff spring instead of sliding. */
 #define FRICTION_SLIP 1e-3
 
-/* The Newton iterations' tolerance when the scene sets none, over
- * gravity's magnitude (1 m/s^2 without gravity): the largest residual
- * acceleration left, which changes a velocity by beta times it. */
-#define DEFAULT_TOL 1e-3
+/* Newton's iterations are also done when the largest residual
+ * acceleration left is this part of gravity's (of 1 m/s^2 without
+ * gravity): it changes a velocity by beta times it. */
+#define RESIDUAL_TOL 1e-3
 
 /* Newton's iterations have converged once the step they ask changes no
  * node's velocity by more than this (m/s; it moves the node that times
@@ -47,11 +47,12 @@
  * springs, sheared corners) the system's positive stand-in for the
  * stiffness makes the convergence linear, at 0.5 to 0.9 an iteration. */
 #define NEWTON_VTOL 1e-4
-/* ... or than this part of the largest motion of the step: where a cloth
- * crumples on impact the iterations' linear tail would otherwise take
- * twice as many (peers' table at 25^2, first 0.35 s: 9.4 a step against
- * 16.6 at 1e-3, 2.2e10 instructions against 1.1e10) for corrections of a
- * hundredth of what the step moved. */
+/* ... or than this part of the largest motion of the step, when the scene
+ * sets no tolerance: where a cloth crumples on impact the iterations'
+ * linear tail would otherwise take twice as many (peers' table at 25^2,
+ * first 0.35 s: 9.8 a step, 1.0e10 instructions; 1.7e10 at 1e-3, 8.9e9
+ * at 3e-2, 5.1e9 at 0.1) for corrections of a hundredth of what the step
+ * moved. */
 #define NEWTON_REL 1e-2
 
 /* The energy correction scales the free nodes' velocities by at most this
@@ -64,6 +65,10 @@
 /* The solve goes on at most this many times with the contacts it found
  * late (late_obstacle_contacts). */
 #define LATE_PASSES 3
+
+/* The pairs within this many thicknesses of pushing are kept near (at
+ * least; need_near). */
+#define NEAR_REACH 2.0
 
 /* A line search may go this far past the Newton step (extrapolate). */
 #define EXTRAPOLATE_MOST 4.0
@@ -93,7 +98,8 @@ bdf2_init(struct bdf2 *b, const struct scene *sc, const struct forces *fo,
 	b->sc = sc;
 	b->fo = fo;
 	b->pr = pr;
-	b->tol = (tol > 0 ? tol : DEFAULT_TOL) * (gmag > 0 ? gmag : 1);
+	b->tol = RESIDUAL_TOL * (gmag > 0 ? gmag : 1);
+	b->rel = tol > 0 ? tol : NEWTON_REL;
 	b->max_newton = 40;
 	b->max_cg = 400;
 	for (i = 0; i < cl->nsprings; i++)
@@ -133,6 +139,7 @@ bdf2_free(struct bdf2 *b)
 	free(b->pt);
 	free(b->act);
 	free(b->live);
+	free(b->near);
 	memset(b, 0, sizeof *b);
 }
 
@@ -352,6 +359,9 @@ set_pairs(struct bdf2 *b)
 		if ((l = realloc(b->live, b->ct->n * sizeof *l)) == NULL)
 			return -1;
 		b->live = l;
+		if ((l = realloc(b->near, b->ct->n * sizeof *l)) == NULL)
+			return -1;
+		b->near = l;
 		b->ptcap = b->ct->n;
 	}
 	for (i = 0; i < b->ct->n; i++) {
@@ -421,6 +431,42 @@ plane_distance(const struct bdf2_obstacle_contact *c, const double *x)
 	return v3_dot(v3_sub(v3_load(x + 3 * c->node), v3_load(c->q)), v3_load(c->n));
 }
 
+/*
+ * The pairs near enough to matter. A step's pairs are those that may come
+ * within reach over it (contacts.h), tens of thousands on a crumpled
+ * cloth, most never pushing: their gaps were 18 % of a 100^2 cloth's
+ * time, taken at every iterate. A pair's gap sum w x . n0 changes by at
+ * most twice the farthest any node has moved (the |w| sum to 2), so the
+ * pairs whose gap at some iterate was over the thickness by more than
+ * `reach` stay out of reach while the nodes have drifted less than half
+ * of it since: near_pairs lists the others, and need_near makes the list
+ * anew when the drift since leaves less than `want` of it.
+ */
+static void
+near_pairs(struct bdf2 *b, const double *x, double reach)
+{
+	size_t i;
+
+	b->nnear = 0;
+	for (i = 0; i < b->ct->n; i++) {
+		double gap = pair_gap(b, &b->ct->pair[i], x, b->x0, NULL);
+
+		b->pt[i].gap = gap;
+		if (gap < b->ct->thickness + reach)
+			b->near[b->nnear++] = i;
+	}
+	b->near_reach = reach;
+	b->drift = 0;
+	b->near_ok = true;
+}
+
+static void
+need_near(struct bdf2 *b, const double *x, double want)
+{
+	if (!b->near_ok || b->near_reach - 2 * b->drift < want)
+		near_pairs(b, x, fmax(NEAR_REACH * b->ct->thickness, 2 * want));
+}
+
 /* The normal forces of the iterate x, which friction takes as given
  * (lagged) while the line search looks along a direction. */
 static void
@@ -428,7 +474,7 @@ lag_normal_forces(struct bdf2 *b, const double *x)
 {
 	const struct scene *sc = b->sc;
 	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness;
-	size_t i;
+	size_t i, j;
 
 	for (i = 0; i < b->noc; i++) {
 		struct bdf2_obstacle_contact *c = &b->oc[i];
@@ -439,13 +485,15 @@ lag_normal_forces(struct bdf2 *b, const double *x)
 	b->nlive = b->nact = 0;
 	if (b->ct == NULL)
 		return;
-	for (i = 0; i < b->ct->n; i++) {
-		double gap = pair_gap(b, &b->ct->pair[i], x, b->x0, NULL);
+	need_near(b, x, 0);
+	for (j = 0; j < b->nnear; j++) {
+		size_t q = b->near[j];
+		double gap = pair_gap(b, &b->ct->pair[q], x, b->x0, NULL);
 
-		b->pt[i].gap = gap;
-		b->pt[i].lambda = gap < b->ct->thickness ? b->pt[i].k * (b->ct->thickness - gap) : 0;
+		b->pt[q].gap = gap;
+		b->pt[q].lambda = gap < b->ct->thickness ? b->pt[q].k * (b->ct->thickness - gap) : 0;
 		if (gap < b->ct->thickness)
-			b->act[b->nact++] = i;
+			b->act[b->nact++] = q;
 	}
 	/* at x itself, only the pairs that push have terms */
 	memcpy(b->live, b->act, b->nact * sizeof *b->live);
@@ -955,21 +1003,31 @@ max_node_norm(const double *a, size_t n)
 }
 
 /* The pairs that may push somewhere along dx (up to EXTRAPOLATE_MOST of
- * it) from x: a pair's gap sum w x n0 changes by at most the sum of |w|,
- * 2, times the farthest any node moves. */
+ * it) from x: a pair's gap sum w x n0 is linear in x, so along x + a dx it
+ * is its gap plus a times its rate sum w n0 . dx, exactly. The near pairs
+ * hold every pair that can: a gap moves by at most twice the farthest any
+ * node moves. */
 static void
 live_pairs(struct bdf2 *b)
 {
-	size_t i, n = (size_t)b->fo->cl->n;
-	double reach;
+	size_t j, n = (size_t)b->fo->cl->n;
 
 	if (b->ct == NULL)
 		return;
-	reach = b->ct->thickness + 2 * EXTRAPOLATE_MOST * max_node_norm(b->dx, n);
+	need_near(b, b->x, 2 * EXTRAPOLATE_MOST * max_node_norm(b->dx, n));
 	b->nlive = 0;
-	for (i = 0; i < b->ct->n; i++)
-		if (b->pt[i].gap < reach)
-			b->live[b->nlive++] = i;
+	for (j = 0; j < b->nnear; j++) {
+		const struct contact_pair *cp = &b->ct->pair[b->near[j]];
+		double rate = 0;
+		int k;
+
+		for (k = 0; k < 4; k++)
+			if (cp->vert[k] < b->col->ncloth)
+				rate += cp->w[k] * v3_dot(v3_load(cp->n0), v3_load(b->dx + 3 * cp->vert[k]));
+		if (b->pt[b->near[j]].gap + EXTRAPOLATE_MOST * fmin(rate, 0) < b->ct->thickness ||
+		    b->pt[b->near[j]].lambda > 0)
+			b->live[b->nlive++] = b->near[j];
+	}
 }
 
 /* A full step taken, Phi fell to phi1 along dx: where the parabola through
@@ -1017,6 +1075,9 @@ line_search(struct bdf2 *b, double phi0)
 		if (phi <= phi0 + 1e-4 * alpha * slope) {
 			if (cut == 0)
 				extrapolate(b, phi0, slope, phi);
+			for (i = 0; i < n3; i++)	/* the move, for need_near */
+				b->r[i] = b->xtry[i] - b->x[i];
+			b->drift += max_node_norm(b->r, n3 / 3);
 			memcpy(b->x, b->xtry, n3 * sizeof *b->x);
 			b->cuts += cut;
 			return true;
@@ -1051,7 +1112,7 @@ find_resets(struct bdf2 *b)
 {
 	const struct scene *sc = b->sc;
 	double clear = OBSTACLE_CLEARANCE * sc->mat.thickness;
-	size_t i;
+	size_t i, j;
 	int k;
 
 	memset(b->nreset, 0, (size_t)b->fo->cl->n);
@@ -1065,13 +1126,15 @@ find_resets(struct bdf2 *b)
 	b->nlive = 0;
 	if (b->ct == NULL)
 		return;
-	for (i = 0; i < b->ct->n; i++) {
-		const struct contact_pair *cp = &b->ct->pair[i];
+	need_near(b, b->x, 0);
+	for (j = 0; j < b->nnear; j++) {
+		size_t q = b->near[j];
+		const struct contact_pair *cp = &b->ct->pair[q];
 
-		b->pt[i].gap = pair_gap(b, cp, b->x, b->x0, NULL);
-		if (b->pt[i].gap >= b->ct->thickness)
+		b->pt[q].gap = pair_gap(b, cp, b->x, b->x0, NULL);
+		if (b->pt[q].gap >= b->ct->thickness)
 			continue;
-		b->live[b->nlive++] = i;
+		b->live[b->nlive++] = q;
 		for (k = 0; k < 4; k++)
 			if (cp->vert[k] < b->col->ncloth && !held(b, cp->vert[k]) && cp->w[k] != 0)
 				add_reset(b, cp->vert[k], v3_load(cp->n0));
@@ -1186,7 +1249,7 @@ static int
 stiffen_overrun(struct bdf2 *b)
 {
 	double most = OVERRUN_MOST * b->kmax;
-	size_t i;
+	size_t i, j;
 	int n = 0;
 
 	for (i = 0; i < b->noc; i++) {
@@ -1199,10 +1262,11 @@ stiffen_overrun(struct bdf2 *b)
 	}
 	if (b->ct == NULL)
 		return n;
-	for (i = 0; i < b->ct->n; i++) {
-		struct bdf2_pair_term *pt = &b->pt[i];
+	need_near(b, b->x, 0);
+	for (j = 0; j < b->nnear; j++) {
+		struct bdf2_pair_term *pt = &b->pt[b->near[j]];
 
-		if (pair_gap(b, &b->ct->pair[i], b->x, b->x0, NULL) < 0 && pt->k < most) {
+		if (pair_gap(b, &b->ct->pair[b->near[j]], b->x, b->x0, NULL) < 0 && pt->k < most) {
 			pt->k = fmin(pt->k * OVERRUN_STIFFEN, most);
 			n++;
 		}
@@ -1238,9 +1302,10 @@ newton(struct bdf2 *b, const double *y)
 			return -1;
 		b->last_step = max_node_norm(b->dx, n3 / 3);
 		if (b->last_step <= NEWTON_VTOL * b->beta ||
-		    b->last_step <= NEWTON_REL * step_motion(b, y)) {
+		    b->last_step <= b->rel * step_motion(b, y)) {
 			for (i = 0; i < n3; i++)	/* too small to search along */
 				b->x[i] += b->dx[i];
+			b->drift += b->last_step;
 			converged = true;
 			it++;
 			break;
@@ -1280,6 +1345,7 @@ bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
 		b->stopped = true;	/* out of memory: the caller sees a step given up */
 		return;
 	}
+	b->near_ok = false;
 	/*
 	 * From the step's start, not the inertial target: the start is a
 	 * state the barriers allow (no hinge folded right back, where its
@@ -1388,9 +1454,12 @@ bdf2_events(struct bdf2 *b, struct collide *col, long step, const double *y1)
 		    v3_load(c->q), n, after - b->beta * force / cl->mass[c->node], after) != 0)
 			return -1;
 	}
-	if (b->ct != NULL)
+	if (b->ct != NULL) {
 		for (i = 0; i < b->ct->n; i++)
-			b->ct->pair[i].active = b->pt[i].gap < b->ct->thickness;
+			b->ct->pair[i].active = false;
+		for (i = 0; i < b->nlive; i++)	/* find_resets': those that push */
+			b->ct->pair[b->live[i]].active = true;
+	}
 	return 0;
 }
 

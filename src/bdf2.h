@@ -103,7 +103,8 @@ struct bdf2 {
 	struct mg mg;		/* its preconditioner */
 	bool use_mg;		/* the last setup succeeded (else block Jacobi) */
 	double kmax;		/* N/m: the stiffest spring's */
-	double tol;		/* converged when every free node's |dPhi/dx|/m <= tol (m/s^2) */
+	double tol;		/* converged when every free node's |dPhi/dx|/m <= tol (m/s^2), */
+	double rel;		/* or Newton's step moves no node rel of the step's largest motion */
 	int max_newton, max_cg;
 	double last_step;
 	bool lb_reset, lb_have_prev;
@@ -126,6 +127,10 @@ struct bdf2 {
 	/* the pairs that push at the iterate (its system's), and those whose
 	 * terms the potential takes (the line search's may push ahead) */
 	size_t *act, nact, *live, nlive;
+	/* the pairs that may push before the nodes drift (bdf2.c near_pairs) */
+	size_t *near, nnear;
+	double near_reach, drift;
+	bool near_ok;
 	struct contacts *ct;	/* the step's pairs, and their geometry */
 	const struct collide *col;
 	/* the normals along which each node's history is made anew at the
@@ -144,8 +149,10 @@ struct bdf2 {
 	bool stopped;
 };
 
-/* For a checked scene and its network; tol over gravity's magnitude (1
- * m/s^2 without gravity), 0 for the default.
+/* For a checked scene and its network; tol is the Newton iterations'
+ * tolerance (the scene's: a step is done when the next Newton step would
+ * move no node by this part of the step's largest motion), 0 for the
+ * default (1e-2).
  * Returns 0, or -1 out of memory. */
 int bdf2_init(struct bdf2 *b, const struct scene *sc, const struct forces *fo,
     const struct prescribed *pr, double tol);

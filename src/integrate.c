@@ -76,7 +76,7 @@ integrator_order(enum integrator_kind kind)
 double
 integrator_default_tolerance(enum integrator_kind kind)
 {
-	return integrator_is_implicit(kind) ? 1e-3 : 1e-6;
+	return kind == INTEG_BDF2 ? 1e-2 : integrator_is_implicit(kind) ? 1e-3 : 1e-6;
 }
 
 double

@@ -55,7 +55,8 @@ void integrator_names(char *buf, size_t len);
 int integrator_order(enum integrator_kind kind);
 /* The tolerance a scene that sets none gets: DOPRI5's local error (1e-6),
  * implicit Euler's CG residual relative to its right-hand side (1e-3),
- * bdf2's Newton residual (an acceleration) over gravity's (1e-3); the
+ * bdf2's Newton tolerance, a step done when the next Newton step would
+ * move no node by that part of the step's largest motion (1e-2); the
  * others take none. */
 double integrator_default_tolerance(enum integrator_kind kind);
 double integrator_imag_limit(enum integrator_kind kind);

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "collide.h"
 #include "contacts.h"
 #include "obstacle.h"
 #include "pbd.h"
@@ -161,12 +162,16 @@ pbd_init(struct pbd *pb, const struct scene *sc, const struct forces *fo,
 	    (pb->rhs = malloc(ns * sizeof *pb->rhs)) == NULL ||
 	    (pb->dir = malloc(3 * ns * sizeof *pb->dir)) == NULL ||
 	    (pb->row = malloc(((size_t)cl->n + 1) * sizeof *pb->row)) == NULL ||
+	    (pb->touch = malloc(((size_t)cl->n + 1) * sizeof *pb->touch)) == NULL ||
+	    (pb->touch_at = malloc((6 * (size_t)cl->n + 1) * sizeof *pb->touch_at)) == NULL ||
 	    order_corners(pb, cl) != 0) {
 		pbd_free(pb);
 		return -1;
 	}
-	for (p = 0; p < cl->n; p++)
+	for (p = 0; p < cl->n; p++) {
 		pb->w[p] = pr->held[p] || !(cl->mass[p] > 0) ? 0 : 1 / cl->mass[p];
+		pb->touch[p] = -1;
+	}
 	return 0;
 }
 
@@ -186,6 +191,8 @@ pbd_free(struct pbd *pb)
 	free(pb->dir);
 	free(pb->row);
 	free(pb->corner_order);
+	free(pb->touch);
+	free(pb->touch_at);
 	memset(pb, 0, sizeof *pb);
 }
 
@@ -410,6 +417,9 @@ obstacles(struct pbd *pb, double *x)
 				xp = v3_madd(xp, dt, -(slip <= cut ? 1 : cut / slip));
 			}
 			v3_store(x + 3 * p, xp);
+			pb->touch[p] = (int)o;
+			v3_store(pb->touch_at + 6 * p, q);
+			v3_store(pb->touch_at + 6 * p + 3, n);
 		}
 	}
 }
@@ -478,6 +488,8 @@ pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, str
 	}
 	memcpy(pb->xs, y, n3 * sizeof *pb->xs);
 	memcpy(pb->vs, y + n3, n3 * sizeof *pb->vs);
+	for (i = 0; i < (size_t)cl->n; i++)
+		pb->touch[i] = -1;
 	for (s = 0; s < nsub && !forces_stopped(pb->fo); s++) {
 		double ts = t + s * hs, te = s + 1 == nsub ? t + h : t + (s + 1) * hs;
 
@@ -503,4 +515,25 @@ pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, str
 	}
 	memcpy(y_out, pb->xs, n3 * sizeof *y_out);
 	memcpy(y_out + n3, pb->vs, n3 * sizeof *y_out);
+}
+
+int
+pbd_events(const struct pbd *pb, struct collide *col, long step, const double *y0,
+    const double *y1)
+{
+	size_t n3 = 3 * (size_t)pb->fo->cl->n;
+	int p;
+
+	for (p = 0; p < pb->fo->cl->n; p++) {
+		vec3 n;
+
+		if (pb->touch[p] < 0)
+			continue;
+		n = v3_load(pb->touch_at + 6 * p + 3);
+		if (collide_add_event(col, step, p, CONTACT_OBSTACLE, -1, pb->touch[p],
+		    v3_load(pb->touch_at + 6 * p), n, v3_dot(v3_load(y0 + n3 + 3 * p), n),
+		    v3_dot(v3_load(y1 + n3 + 3 * p), n)) != 0)
+			return -1;
+	}
+	return 0;
 }

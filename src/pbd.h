@@ -64,6 +64,10 @@ struct pbd {
 	double *diag, *off, *rhs, *dir;	/* per spring: the line system */
 	double *row;		/* per node: the tension's stiffness (pbd.c) */
 	size_t *corner_order;	/* the shear sweep's order (pbd.c order_corners) */
+	/* per node, the step's last push out of an analytic obstacle: its
+	 * index (-1 for none), the surface's nearest point and normal */
+	int *touch;
+	double *touch_at;	/* 6 a node: q, n */
 	long substeps;		/* so far */
 };
 
@@ -93,5 +97,13 @@ struct contacts;
 struct collide;
 void pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out,
     struct contacts *ct, const struct collide *col);
+
+/* The step's contacts with analytic obstacles as events of col, one a node
+ * that a substep pushed out of one (the last it did): at the surface's
+ * point and normal of that push, with the node's velocity along the normal
+ * at the step's start (y0) and end (y1). Substeps hold these contacts, so
+ * that the collision stages never see them. 0, or -1 out of memory. */
+int pbd_events(const struct pbd *pb, struct collide *col, long step, const double *y0,
+    const double *y1);
 
 #endif

@@ -548,10 +548,11 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	if (st->in.kind == INTEG_FAST || st->in.kind == INTEG_BDF2) {
 		if ((st->in.kind == INTEG_BDF2 &&
 		    bdf2_events(&st->bd, &st->col, st->step, st->y_next) != 0) ||
+		    (st->in.kind == INTEG_FAST &&
+		    pbd_events(&st->pb, &st->col, st->step, st->y, st->y_next) != 0) ||
 		    contacts_events(&st->ct, &st->col, st->step, st->y_next) != 0)
 			return collisions_failed(st, f, NULL);
-		if (st->in.kind == INTEG_BDF2)
-			own = st->col.nev;
+		own = st->col.nev;
 	} else {
 		collide_begin(&st->col);
 	}

@@ -205,6 +205,8 @@ static void hanging_strip_is_a_catenary(void **state) { (void)state; catenary_wi
 static void catenary_implicit(void **state) { (void)state; catenary_with(INTEG_IMPLICIT_EULER); }
 static void cantilever_fast(void **state) { (void)state; cantilever_with(INTEG_FAST); }
 static void catenary_fast(void **state) { (void)state; catenary_with(INTEG_FAST); }
+static void cantilever_bdf2(void **state) { (void)state; cantilever_with(INTEG_BDF2); }
+static void catenary_bdf2(void **state) { (void)state; catenary_with(INTEG_BDF2); }
 
 int
 main(void)
@@ -217,6 +219,8 @@ main(void)
 		cmocka_unit_test(catenary_implicit),
 		cmocka_unit_test(cantilever_fast),
 		cmocka_unit_test(catenary_fast),
+		cmocka_unit_test(cantilever_bdf2),
+		cmocka_unit_test(catenary_bdf2),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1002,7 +1002,7 @@ resume_every_keyframe_bdf2(void **state)
 {
 	(void)state;
 	resume_every_keyframe_of("[simulation]\nname = tiny-bdf2\nduration = 0.1 s\ndt = auto\n"
-	    "integrator = bdf2\noutput_rate = 50\n" TINY_CLOTH, 5);
+	    "integrator = bdf2\noutput_rate = 50 Hz\n" TINY_CLOTH, 5);
 }
 
 /* What a restore checks: a saved state is taken only whole and only into

@@ -501,6 +501,45 @@ free_shots(struct shot *sh, size_t n)
 }
 
 /* The picture of every target; an exit status. */
+/* The largest magnitude of strain colouring c over every intact frame of
+ * the replay, so that its pictures share one scale by default (each set
+ * its own from the frames it drew: two pictures of one run could not be
+ * compared); 0 when none could be read, -1 out of memory. */
+static double
+replay_field_max(struct snapshot *sn, const struct cloth *cl, enum colouring c)
+{
+	const struct replay *rp = &sn->sr.rp;
+	size_t n3 = 3 * (size_t)cl->n, i, k, j;
+	double *x = malloc((n3 > 0 ? n3 : 1) * sizeof *x), m = 0;
+	double *field = malloc((cl->n > 0 ? (size_t)cl->n : 1) * sizeof *field);
+	struct drape_err err;
+
+	if (x == NULL || field == NULL) {
+		free(x);
+		free(field);
+		return -1;
+	}
+	for (i = 0; i < rp->nchunks && m >= 0; i++) {
+		struct replay_frames fr;
+
+		/* a damaged chunk is passed over, as the viewer does */
+		if (!replay_is_frames(rp->chunk[i].kind) || replay_read_frames(rp, i, &fr, &err) != 0)
+			continue;
+		for (k = 0; k < fr.count && m >= 0; k++) {
+			for (j = 0; j < n3; j++)
+				x[j] = fr.x[k * n3 + j];
+			if (colouring_field(c, cl, x, NULL, 0, field) != 0)
+				m = -1;
+			for (j = 0; m >= 0 && j < (size_t)cl->n; j++)
+				m = fmax(m, fabs(field[j]));
+		}
+		replay_frames_free(&fr);
+	}
+	free(x);
+	free(field);
+	return m;
+}
+
 static int
 snapshot_png(struct snapshot *sn)
 {
@@ -570,7 +609,22 @@ snapshot_png(struct snapshot *sn)
 	po.w = sn->w;
 	po.h = sn->h;
 	po.colouring = sn->colouring;
-	po.range = sn->range > 0 ? sn->range : colouring_range(sn->colouring, m);
+	/* a replay's default scale is its whole run's, a scene's the frames
+	 * drawn (it is run only so far) */
+	if (sn->range <= 0 && sn->replay && colouring_is_strain(sn->colouring)) {
+		double all = replay_field_max(sn, s.cl, sn->colouring);
+
+		if (all < 0) {
+			fprintf(stderr, "drape snapshot: out of memory\n");
+			rc = EXIT_RUNTIME;
+			goto done;
+		}
+		m = fmax(m, all);
+	}
+	/* --range is in the legend's unit: percent, or degrees of shear (it
+	 * was taken as a bare strain: '--range 20' drew a scale to 2000 %) */
+	po.range = sn->range > 0 ? sn->range * colouring_unit(sn->colouring) :
+	    colouring_range(sn->colouring, m);
 	po.title = s.sc->name;
 	po.supersample = PICTURE_SUPERSAMPLE;
 	/* --size is the whole picture's: the band under the frames within it */

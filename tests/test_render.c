@@ -763,6 +763,60 @@ same_frame_same_bytes(void **state)
 	free(pa);
 }
 
+/* Issue 30: the strain scale changed between pictures of one run (each
+ * took the round number above the largest strain of the frames it drew),
+ * so two pictures could not be compared. A replay's pictures now share
+ * the scale of its whole run by default: the legends of two times are
+ * the same pixels (the frames' are not); --range still fixes it. */
+static void
+one_scale_for_a_replay(void **state)
+{
+	static const char *const times[2] = { "0.1", "1.0" };
+	struct result r;
+	char args[1200], path[2][200];
+	struct png_image im[2];
+	unsigned char *buf, *buf1;
+	size_t len, len1, row;
+	int k, y, differ = 0;
+
+	(void)state;
+	for (k = 0; k < 2; k++) {
+		snprintf(path[k], sizeof path[k], "%s/scale%d.png", dir, k);
+		snprintf(args, sizeof args, "snapshot --png '%s' --time %s --color strain "
+		    "--frame scene --size 480x400 '" TOP_SRCDIR "/replays/tablecloth.drr'",
+		    path[k], times[k]);
+		drape(&r, args);
+		assert_int_equal(r.status, 0);
+		buf = slurp_file(path[k], &len);
+		png_read(buf, len, &im[k]);
+		free(buf);
+		assert_int_equal(im[k].w, 480);
+		assert_int_equal(im[k].h, 400);
+	}
+	row = 3 * (size_t)im[0].w;
+	/* the band's last 40 rows: the legend, its scale and its labels */
+	for (y = 360; y < 400; y++)
+		if (memcmp(im[0].rgb + row * (size_t)y, im[1].rgb + row * (size_t)y, row) != 0)
+			fail_msg("the legends of t = 0.1 s and 1.0 s differ at row %d", y);
+	for (y = 0; y < 300; y++)
+		differ += memcmp(im[0].rgb + row * (size_t)y, im[1].rgb + row * (size_t)y, row) != 0;
+	assert_true(differ > 0);
+	free(im[0].rgb);
+	free(im[1].rgb);
+	/* --range in percent: the run's round scale, 50 % (it was taken as a
+	 * bare strain, 5000 %), gives the default's bytes */
+	snprintf(args, sizeof args, "snapshot --png '%s' --time 0.1 --color strain --range 50 "
+	    "--frame scene --size 480x400 '" TOP_SRCDIR "/replays/tablecloth.drr'", path[1]);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	buf = slurp_file(path[0], &len);
+	buf1 = slurp_file(path[1], &len1);
+	assert_int_equal(len, len1);
+	assert_memory_equal(buf, buf1, len);
+	free(buf);
+	free(buf1);
+}
+
 static void
 unicode_snapshot(void **state)
 {
@@ -903,6 +957,7 @@ main(void)
 		cmocka_unit_test(braille_dots_of_a_triangle),
 		cmocka_unit_test(same_frame_same_bytes),
 		cmocka_unit_test(snapshot_frames_the_cloth),
+		cmocka_unit_test(one_scale_for_a_replay),
 		cmocka_unit_test(unicode_snapshot),
 		cmocka_unit_test(bad_arguments),
 		cmocka_unit_test(plot_charts),

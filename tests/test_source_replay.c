@@ -711,7 +711,8 @@ step_labels_agree(void **state)
 		for (i = 0; i < n; i++)
 			assert_int_equal(step_shown(ev[i].step), k);
 	}
-	/* node 401: an edge-edge contact in step 36, three node-face in 37 */
+	/* node 401: an edge-edge contact (and one with the box) in step 36,
+	 * node-face contacts in 37, three of them listed */
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 36));
 	src.state(src.ctx, &s);
 	assert_int_equal(evlog_init(&log, s.cl->n), 0);

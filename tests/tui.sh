@@ -238,7 +238,8 @@ if wait_for 'prompt\$'; then
 		tm send-keys -t t g 3 6 Enter Tab Tab / 4 0 1 Enter
 		wait_for 'node 401 \(i' &&
 			wait_for "\\| *36 e-e " || fail "node 401's contact of step 36 not at step 36"
-		[ "$("$DRAPE" events --node 401 --from 36 --to 36 "$top/replays/tablecloth.drr" | cut -f1,3 | tail -n +2)" = "$(printf '36\tedge-edge')" ] ||
+		"$DRAPE" events --node 401 --from 36 --to 36 "$top/replays/tablecloth.drr" | cut -f1,3 |
+			grep -qx "$(printf '36\tedge-edge')" ||
 			fail "drape events does not give node 401's contact at step 36"
 		tm send-keys -t t q
 		wait_for 'EXIT=[0-9]+'

@@ -371,16 +371,19 @@ cmd_export(int argc, char **argv)
 		fprintf(stderr, "drape export: %s\n", err.msg);
 		return EXIT_USAGE;
 	}
-	/* the grid's texture coordinates and the obstacles need the scene */
-	if (build_scene(&r, argv[optind], &sc, &net, &serr) == 0)
-		built = true;
-	else if (eo.obstacles != NULL) {
-		fprintf(stderr, "drape export: --obstacles: %s\n", serr.msg);
-		replay_close(&r);
-		return EXIT_USAGE;
-	} else
-		fprintf(stderr, "drape export: %s; the OBJs go without texture coordinates\n",
-		    serr.msg);
+	/* the grid's texture coordinates and the obstacles need the scene; a
+	 * PC2 alone (positions only) does not */
+	if (eo.obj != NULL || eo.seq != NULL || eo.obstacles != NULL) {
+		if (build_scene(&r, argv[optind], &sc, &net, &serr) == 0)
+			built = true;
+		else if (eo.obstacles != NULL) {
+			fprintf(stderr, "drape export: --obstacles: %s\n", serr.msg);
+			replay_close(&r);
+			return EXIT_USAGE;
+		} else
+			fprintf(stderr, "drape export: %s; the OBJs go without texture "
+			    "coordinates\n", serr.msg);
+	}
 	/* nor over a mesh the scene reads */
 	if (built && (cmd_output_spares_scene("export", "--obstacles", eo.obstacles, &sc,
 	    false) != EXIT_OK || cmd_output_spares_scene("export", "--obj", eo.obj, &sc,

@@ -1,86 +1,39 @@
 #!/usr/bin/env bash
-# readme.sh: the README's commands run as written (issue 30, point 4).
-# The Quick start is two commands, from the top of a clone: the set-up
-# and the shipped tablecloth (run here off a terminal, where it prints a
-# summary; .ci/setup itself installs packages and is CI's), then make
-# check. The README says how drape gets on the PATH, and that way works:
-# the export it shows, and make install. The pictures' commands give the
-# shipped pictures byte for byte.
+# readme.sh: the synopsis in README.md ("What is there", between the
+# "synopsis:" markers, indented 4 spaces) is the usage that `drape --help`
+# prints, line for line, up to its first blank line.
+#   tests/readme.sh            check (make check runs it)
+#   tests/readme.sh --write    rewrite the block from the binary (make readme)
 set -u
 
 DRAPE=${DRAPE:-src/drape}
-case $DRAPE in /*) ;; *) DRAPE=$PWD/$DRAPE ;; esac
-top=$(cd "$(dirname "$0")/.." && pwd)	# the source tree
-build=$(cd "$(dirname "$DRAPE")/.." && pwd)	# the build tree
-readme=$top/README.md
-tmp=$(mktemp -d) || exit 99
+srcdir=${srcdir:-.}
+readme=$srcdir/README.md
+begin='<!-- synopsis: begin (make readme writes this from `drape --help`) -->'
+end='<!-- synopsis: end -->'
+
+tmp=$(mktemp -d /tmp/drape-readme-XXXXXX) || exit 1
 trap 'rm -rf "$tmp"' EXIT
-failed=0
-fail() { echo "FAIL: $*"; failed=1; }
+"$DRAPE" --help >"$tmp/help" || { echo "FAIL: $DRAPE --help exited $?"; exit 1; }
+sed '/^$/,$d' "$tmp/help" | sed 's/^/    /' >"$tmp/want"
+[ -s "$tmp/want" ] || { echo "FAIL: $DRAPE --help printed no usage"; exit 1; }
+grep -qxF "$begin" "$readme" && grep -qxF "$end" "$readme" ||
+	{ echo "FAIL: README.md has no synopsis markers ($begin ... $end)"; exit 1; }
 
-# the indented lines of the section titled $1 (one command a line, a
-# continued line joined)
-commands() {
-	awk -v title="## $1" '
-		$0 == title { inside = 1; next }
-		/^## / { inside = 0 }
-		inside && /^    [^ ]/ {
-			line = substr($0, 5)
-			while (line ~ /\\$/ && (getline more) > 0) {
-				sub(/\\$/, "", line); sub(/^ +/, "", more); line = line more
-			}
-			print line
-		}' "$readme"
-}
-
-echo "== the Quick start: two commands"
-commands "Quick start" >"$tmp/quick"
-[ "$(wc -l <"$tmp/quick")" -eq 2 ] || fail "the Quick start has $(wc -l <"$tmp/quick") commands: $(cat "$tmp/quick")"
-[ "$(sed -n 1p "$tmp/quick")" = '.ci/setup && src/drape scenes/tablecloth.scene' ] ||
-	fail "the Quick start's first command is '$(sed -n 1p "$tmp/quick")'"
-[ "$(sed -n 2p "$tmp/quick")" = 'make check' ] || fail "the Quick start's second command is '$(sed -n 2p "$tmp/quick")'"
-[ -x "$top/.ci/setup" ] || fail ".ci/setup is not executable"
-# its run, off a terminal: the progress and a summary, exit 0
-(cd "$top" && "$DRAPE" scenes/tablecloth.scene) </dev/null >"$tmp/out" 2>"$tmp/err"
-rc=$?
-[ $rc -eq 0 ] && grep -q '^steps ' "$tmp/out" ||
-	fail "src/drape scenes/tablecloth.scene off a terminal: exit $rc: $(head -n 3 "$tmp/err")"
-
-echo "== drape on the PATH"
-tr '\n' ' ' <"$readme" | grep -q '`sudo make install`' || fail "the README does not say make install"
-path_line=$(awk '/^## drape on your PATH/ { on = 1 } on && /^    export PATH=/ { print substr($0, 5); exit }' "$readme")
-[ "$path_line" = 'export PATH="$PWD/src:$PATH"' ] || fail "no PATH line in the README: '$path_line'"
-# as written, from the top of the (build) tree
-found=$(cd "$build" && env -i HOME="$HOME" PATH=/usr/bin:/bin sh -c "$path_line; command -v drape")
-[ "$found" = "$build/src/drape" ] || fail "after '$path_line', drape is '$found'"
-# make install puts the binary and the three pages in place
-if ${MAKE:-make} -C "$build" install DESTDIR="$tmp/inst" >"$tmp/install" 2>&1; then
-	prefix=$(sed -n 's/^prefix = //p' "$build/Makefile")
-	"$tmp/inst$prefix/bin/drape" --version >/dev/null || fail "the installed drape does not run"
-	for p in man1/drape.1 man5/drape-scene.5 man5/drape-replay.5; do
-		[ -f "$tmp/inst$prefix/share/man/$p" ] || fail "make install: no $p"
-	done
-else
-	fail "make install: $(tail -n 3 "$tmp/install")"
+if [ "${1:-}" = --write ]; then
+	awk -v b="$begin" -v e="$end" -v f="$tmp/want" '
+		$0 == b { print; print ""; while ((getline l < f) > 0) print l; print ""; skip = 1; next }
+		$0 == e { skip = 0 }
+		!skip' "$readme" >"$tmp/README.md" && cat "$tmp/README.md" >"$readme" || exit 1
+	echo "README.md: synopsis written from $DRAPE --help"
+	exit 0
 fi
 
-echo "== the pictures' commands"
-awk '/^`make pictures` runs/ { on = 1; next } on && /^    / { print; next } on && /^$/ && n++ { exit }' \
-    "$readme" | sed 's/^    //' | awk '{ if (sub(/\\$/, "")) { printf "%s", $0 } else print }' |
-    sed 's/  */ /g' >"$tmp/pictures"
-[ "$(grep -c '^drape ' "$tmp/pictures")" -eq 5 ] || fail "not five picture commands: $(cat "$tmp/pictures")"
-mkdir "$tmp/pictures.d"
-while read -r cmd; do
-	out=$(printf '%s\n' "$cmd" | sed -n 's/.*--png \(pictures\/[^ ]*\).*/\1/p')
-	[ -n "$out" ] || { fail "no --png in '$cmd'"; continue; }
-	case $cmd in "drape plot "*) command -v gnuplot >/dev/null 2>&1 || continue ;; esac
-	mine=$tmp/pictures.d/$(basename "$out")
-	(cd "$top" && eval "PATH=\"$(dirname "$DRAPE"):\$PATH\" ${cmd/$out/$mine}") >/dev/null 2>"$tmp/err" ||
-		{ fail "'$cmd': $(head -n 3 "$tmp/err")"; continue; }
-	# the chart is gnuplot's, its bytes its version's
-	case $cmd in "drape plot "*) continue ;; esac
-	cmp -s "$mine" "$top/$out" || fail "'$cmd' does not give $out as shipped"
-done <"$tmp/pictures"
-
-[ $failed -eq 0 ] && echo "all passed"
-exit $failed
+awk -v b="$begin" -v e="$end" '$0 == e { on = 0 } on && NF { print } $0 == b { on = 1 }' \
+	"$readme" >"$tmp/got"
+if ! diff -u "$tmp/got" "$tmp/want"; then
+	echo "FAIL: README.md's synopsis (-) is not drape --help's usage (+):"
+	echo "run 'make readme' (tests/readme.sh --write) and commit README.md"
+	exit 1
+fi
+echo "ok: README.md's synopsis is drape --help's usage ($(wc -l <"$tmp/want") lines)"

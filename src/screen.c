@@ -133,6 +133,8 @@ screen_collisions(struct text *t, const struct source_stats *ss)
 	int k;
 
 	text_add(t, "%-12s %6s %10s", "collisions", "step", "total");
+	if (ss->recomputed >= 0)
+		text_add(t, "recomputed %ld steps", ss->recomputed);
 	if (!ss->active) {
 		text_add(t, "nothing to collide with");
 		return;

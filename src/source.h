@@ -45,6 +45,9 @@ struct source_stats {
 	const char *broad;	/* its name */
 	const struct collide_stats *step, *total;
 	const struct hash_stats *hash;	/* its latest fill */
+	/* A replay's: the steps run again so far to recompute its digest's
+	 * events (what makes a first seek into a part of it slow); -1 live. */
+	long recomputed;
 };
 
 /* Where a replay goes. */

@@ -111,6 +111,7 @@ live_stats(void *ctx, struct source_stats *s)
 	s->step = r.last;
 	s->total = r.total;
 	s->hash = &r.last->hash;
+	s->recomputed = -1;
 }
 
 /* One force evaluation for all nodes, kept until the next step. */

@@ -496,6 +496,7 @@ replay_stats(void *ctx, struct source_stats *s)
 	s->step = sr->rec != NULL ? &sr->rec->col : &sr->none;
 	s->total = &sr->total;
 	s->hash = &s->step->hash;
+	s->recomputed = sr->re.steps;
 }
 
 /* Known at a keyframe only, whose velocities are exact. */

@@ -129,6 +129,12 @@ status_and_panels(void **state)
 	text_init(&t, 30);
 	screen_collisions(&t, &ss);
 	assert_string_equal(t.line[0], "collisions     step      total");
+	assert_null(strstr(t.line[1], "recomputed"));	/* live: nothing recomputed */
+	ss.recomputed = 100;	/* a digest's replay says what its seeks cost */
+	text_init(&t, 30);
+	screen_collisions(&t, &ss);
+	assert_string_equal(t.line[1], "recomputed 100 steps");
+	ss.recomputed = -1;
 	text_init(&t, 30);
 	screen_hash(&t, &ss);
 	assert_int_equal(t.n, 5 + HASH_HIST);

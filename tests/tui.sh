@@ -246,6 +246,45 @@ if wait_for 'prompt\$'; then
 	fi
 	tm kill-session -t t
 fi
+# One seek per burst, counted: a digest's events are recomputed a chunk
+# (50 steps here) at a time, the collisions panel says how many steps so
+# far. End, then three PgUp typed while End's chunk is recomputed, must
+# recompute what End then g 50 do (End's chunk and step 50's: 100 steps);
+# a seek per key recomputes the two chunks between too (200).
+recomputed_at_50() { # keys after End, typed at once or after End has settled
+	tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
+	recomputed_session "$1"
+	tm kill-session -t t
+}
+recomputed_session() {
+	local how=$1
+	wait_for 'prompt\$' || return
+	tm send-keys -t t "'$DRAPE' replay '$top/replays/tablecloth.drr'; echo EXIT=\$?" Enter
+	wait_for 'tablecloth.drr +replay +step 0 ' || return
+	if [ "$how" = burst ]; then
+		tm send-keys -t t End
+		tm send-keys -t t PPage PPage PPage
+	else
+		tm send-keys -t t End
+		wait_for ' step 200 ' || return
+		tm send-keys -t t g 5 0 Enter
+	fi
+	wait_for 'replay +step 50 ' && wait_for 'recomputed [0-9]+ steps' &&
+		sed -n 's/.*recomputed \([0-9]*\) steps.*/\1/p' "$tmp/screen" >"$tmp/recomputed.$how"
+	tm send-keys -t t q
+	wait_for 'EXIT=[0-9]+'
+}
+echo "== replay: one seek per burst of keys"
+recomputed_at_50 burst
+recomputed_at_50 direct
+if [ -s "$tmp/recomputed.burst" ] && [ -s "$tmp/recomputed.direct" ]; then
+	[ "$(cat "$tmp/recomputed.burst")" = "$(cat "$tmp/recomputed.direct")" ] ||
+		fail "a burst of three PgUp after End recomputed $(cat "$tmp/recomputed.burst")" \
+		    "steps where End and g 50 recompute $(cat "$tmp/recomputed.direct"): a seek a key"
+else
+	fail "no count of steps recomputed in the collisions panel"
+fi
+
 "$DRAPE" replay "$tmp/fall.drr" </dev/null >"$tmp/out" 2>"$tmp/screen"
 rc=$?
 [ $rc -eq 2 ] && grep -q 'not a terminal.*drape info' "$tmp/screen" ||

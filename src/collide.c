@@ -65,8 +65,11 @@ collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
 	c->slide_gap = INFINITY;
 	c->pairs = broad_runs(sc);
 	c->active = collide_active(sc);
-	broad_init(&c->br, c->opt.broad);
-	c->br.memory_limit = c->opt.memory > 0 ? c->opt.memory : collide_default_memory();
+	if ((c->br = broad_new(c->opt.broad)) == NULL) {
+		err_set(err, "%s: out of memory", sc->path);
+		return -1;
+	}
+	broad_set_memory_limit(c->br, c->opt.memory > 0 ? c->opt.memory : collide_default_memory());
 	if (!c->active)
 		return 0;
 	if (collide_build_geometry(c, cl, held) != 0) {
@@ -84,7 +87,7 @@ collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
 void
 collide_free(struct collide *c)
 {
-	broad_free(&c->br);
+	broad_free(c->br);
 	free(c->x0);
 	free(c->x1);
 	free(c->v1);
@@ -162,7 +165,7 @@ collide_begin(struct collide *c)
 {
 	c->nev = 0;
 	c->stopped = false;
-	c->br.stop = c->stop;
+	broad_set_stop(c->br, c->stop);
 	memset(&c->st, 0, sizeof c->st);
 }
 
@@ -179,9 +182,9 @@ collide_candidates(struct collide *c, const double *y0, double h, double margin,
 	want.near = near;
 	want.near_motion = near_motion;
 
-	c->br.stop = c->stop;
+	broad_set_stop(c->br, c->stop);
 	if (!c->active || !c->pairs) {
-		c->br.nvt = c->br.nee = 0;
+		broad_clear(c->br);
 		return 0;
 	}
 	memcpy(c->x0, y0, n3 * sizeof *c->x0);
@@ -197,8 +200,8 @@ collide_candidates(struct collide *c, const double *y0, double h, double margin,
 		}
 	}
 	c->g.vbox = c->box;
-	if (broad_find(&c->br, &c->g, c->cell, &want, err) != 0) {
-		c->stopped = c->br.stopped;
+	if (broad_find(c->br, &c->g, c->cell, &want, err) != 0) {
+		c->stopped = broad_stopped(c->br);
 		return -1;
 	}
 	return 0;
@@ -245,17 +248,18 @@ collide_check(struct collide *c, long step, double dt, const double *y0, double 
 	c->g.vbox = c->opt.narrow == NARROW_CCD ? c->box : NULL;
 	if (c->pairs) {
 		struct broad_want want = collide_broad_want(c->opt.narrow, c->opt.self);
+		const struct broad_stats *bs = broad_stats(c->br);
 
-		if (broad_find(&c->br, &c->g, c->cell, &want, err) != 0) {
-			c->stopped = c->br.stopped;
+		if (broad_find(c->br, &c->g, c->cell, &want, err) != 0) {
+			c->stopped = broad_stopped(c->br);
 			return -1;
 		}
-		c->st.n[STAT_NODE_PAIRS] = c->br.st.node_pairs;
-		c->st.n[STAT_VT_PAIRS] = c->br.st.vt_pairs;
-		c->st.n[STAT_EE_PAIRS] = c->br.st.ee_pairs;
-		c->st.n[STAT_FILLS] = c->br.st.rebuilt;
-		c->st.cell = c->br.st.cell;
-		c->st.hash = c->br.st.hash;
+		c->st.n[STAT_NODE_PAIRS] = bs->node_pairs;
+		c->st.n[STAT_VT_PAIRS] = bs->vt_pairs;
+		c->st.n[STAT_EE_PAIRS] = bs->ee_pairs;
+		c->st.n[STAT_FILLS] = bs->rebuilt;
+		c->st.cell = bs->cell;
+		c->st.hash = bs->hash;
 	}
 	if (c->opt.narrow == NARROW_SEED) {
 		memset(c->changed, 0, (size_t)c->nv);

@@ -73,7 +73,7 @@ struct collide {
 	unsigned char *fixed;	/* held nodes and obstacle vertices */
 	double *inv_mass;	/* 1/m, 0 for what contacts cannot move */
 	struct geom g;
-	struct broad br;
+	struct broad *br;
 
 	/* per pass */
 	unsigned char *changed, *changed_next, *frozen;

@@ -258,12 +258,13 @@ stop_asked(const struct collide *col)
 int
 contacts_find(struct contacts *ct, const struct collide *col, const double *y0, double h)
 {
-	const struct broad *br = &col->br;
-	size_t i;
+	size_t i, nvt, nee;
+	const struct vt_pair *vt = broad_vt(col->br, &nvt);
+	const struct ee_pair *ee = broad_ee(col->br, &nee);
 
 	ct->n = 0;
-	for (i = 0; i < br->nvt; i++) {
-		int v = br->vt[i].v, t = br->vt[i].t, obst = col->tri_obstacle[t];
+	for (i = 0; i < nvt; i++) {
+		int v = vt[i].v, t = vt[i].t, obst = col->tri_obstacle[t];
 		struct contact_pair cp;
 
 		if ((i & 4095) == 0 && stop_asked(col))
@@ -280,8 +281,8 @@ contacts_find(struct contacts *ct, const struct collide *col, const double *y0, 
 		if (consider(ct, col, &cp, y0, h) != 0)
 			return -1;
 	}
-	for (i = 0; i < br->nee; i++) {
-		const int *a = col->edge + 2 * br->ee[i].a, *b = col->edge + 2 * br->ee[i].b;
+	for (i = 0; i < nee; i++) {
+		const int *a = col->edge + 2 * ee[i].a, *b = col->edge + 2 * ee[i].b;
 		int obst = -1;
 		struct contact_pair cp;
 
@@ -294,7 +295,7 @@ contacts_find(struct contacts *ct, const struct collide *col, const double *y0, 
 		if (obst < 0 && !col->opt.self)
 			continue;
 		cp = (struct contact_pair){ .nv = 4, .vert = { a[0], a[1], b[0], b[1] },
-		    .other = -1 - br->ee[i].b, .obstacle = obst };
+		    .other = -1 - ee[i].b, .obstacle = obst };
 		cp.mu = collide_friction(col, obst).mu;
 		if (consider(ct, col, &cp, y0, h) != 0)
 			return -1;

@@ -9,29 +9,6 @@
 #include "collide_impl.h"
 
 /* Self-contact or obstacle meshes: the broad phase has pairs to find. */
-static bool
-broad_runs(const struct scene *sc)
-{
-	size_t o;
-
-	for (o = 0; o < sc->nobstacles; o++)
-		if (sc->obstacles[o].kind == OBSTACLE_MESH)
-			return true;
-	return sc->col.self;
-}
-
-bool
-collide_active(const struct scene *sc)
-{
-	return broad_runs(sc) || sc->nobstacles > 0;
-}
-
-bool
-collide_uses_hash(const struct scene *sc)
-{
-	return broad_runs(sc) && broad_uses_hash(sc->col.broad);
-}
-
 double
 collide_default_memory(void)
 {
@@ -63,7 +40,7 @@ collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
 	c->nobst = sc->nobstacles;
 	c->pad = 2;
 	c->slide_gap = INFINITY;
-	c->pairs = broad_runs(sc);
+	c->pairs = collide_broad_runs(sc);
 	c->active = collide_active(sc);
 	if ((c->br = broad_new(c->opt.broad)) == NULL) {
 		err_set(err, "%s: out of memory", sc->path);

@@ -35,16 +35,6 @@
 
 #define COLLIDE_FAILSAFE_PASS 5	/* ccd: from this pass on, a hit node goes back to step k */
 
-struct contact_event {
-	long step;
-	int node;		/* the corrected cloth node */
-	enum contact_type type;
-	int other;		/* triangle or edge (by type) of the geometry, or -1 */
-	int obstacle;		/* the scene's obstacle, or -1 for the cloth itself */
-	vec3 q, n;		/* contact point and unit normal */
-	double vn_before, vn_after;	/* the node's velocity along n */
-};
-
 struct collide {
 	struct collision_opts opt;
 	const struct obstacle *obst;
@@ -86,12 +76,6 @@ struct collide {
 	size_t nev, evcap;
 	struct collide_stats st, total;
 };
-
-/* Anything for the stages to do in this scene (an obstacle, or the cloth
- * against itself); and whether its broad phase runs and fills a spatial
- * hash. From the scene alone, so that a replay's viewer says the same. */
-bool collide_active(const struct scene *sc);
-bool collide_uses_hash(const struct scene *sc);
 
 /* What `[collision] memory = auto` allows the stages: half the machine's. */
 double collide_default_memory(void);

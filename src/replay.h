@@ -17,8 +17,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "collide.h"
 #include "err.h"
+#include "event.h"
+#include "stats.h"
 
 /* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q);
  * version 3 writes its frames as chunks of the grid (REPLAY_FRAMES_GRID,

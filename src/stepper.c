@@ -6,8 +6,10 @@
 
 #include "bdf2.h"
 #include "clock.h"
+#include "collide.h"
 #include "contacts.h"
 #include "implicit.h"
+#include "network.h"
 #include "pbd.h"
 #include "stepper.h"
 #include "vec3.h"

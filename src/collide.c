@@ -105,6 +105,113 @@ collide_set_stop(struct collide *c, const volatile sig_atomic_t *flag)
 	c->stop = flag;
 }
 
+/* Whether the boxes of the pair's two sides overlap: each vertex's box of
+ * the step (collide_candidates: its predicted path, widened), a side's the
+ * union of its vertices'. Every broad phase finds at least the pairs whose
+ * boxes overlap, some more (grid: whatever shares a cube); the pairs kept
+ * are those in reach among these, so that which broad phase found them
+ * does not change the run. */
+static bool
+boxes_overlap(const struct collide *c, const struct collide_pair *cp)
+{
+	int first = cp->other >= 0 ? 1 : 2, k, a;
+	double lo[2][3], hi[2][3];
+
+	for (k = 0; k < 4; k++) {
+		const double *b = c->box + 6 * (size_t)cp->vert[k];
+		int side = k >= first;
+
+		for (a = 0; a < 3; a++) {
+			if (k == 0 || k == first) {
+				lo[side][a] = b[a];
+				hi[side][a] = b[3 + a];
+			} else {	/* not fmin and fmax: library calls */
+				lo[side][a] = b[a] < lo[side][a] ? b[a] : lo[side][a];
+				hi[side][a] = b[3 + a] > hi[side][a] ? b[3 + a] : hi[side][a];
+			}
+		}
+	}
+	for (a = 0; a < 3; a++)
+		if (lo[0][a] > hi[1][a] || lo[1][a] > hi[0][a])
+			return false;
+	return true;
+}
+
+/* A signal asks the run to stop: a fast cloth's millions of candidate
+ * pairs take a good part of a second to look at. */
+static bool
+pairs_stop_asked(const struct collide *c)
+{
+	return c->stop != NULL && *c->stop;
+}
+
+/* A mesh vertex's obstacle: that of its first triangle. */
+static int
+vertex_obstacle(const struct collide *c, int v)
+{
+	return c->tri_obstacle[c->vtri[c->vtri_start[v]]];
+}
+
+/* The pair to fn, unless a broad phase whose pairs are exactly those
+ * whose boxes overlap (bvh) found it: no test again, it was 5 % of a fast
+ * run's instructions. */
+static int
+each_pair_one(const struct collide *c, struct collide_pair *p,
+    int (*fn)(void *ctx, const struct collide_pair *p), void *ctx)
+{
+	if (!broad_boxes_exact(c->opt.broad) && !boxes_overlap(c, p))
+		return 0;
+	p->mu = collide_friction(c, p->obstacle).mu;
+	return fn(ctx, p);
+}
+
+int
+collide_each_pair(const struct collide *c, int (*fn)(void *ctx, const struct collide_pair *p),
+    void *ctx)
+{
+	size_t i, nvt, nee;
+	const struct vt_pair *vt = broad_vt(c->br, &nvt);
+	const struct ee_pair *ee = broad_ee(c->br, &nee);
+	int rc;
+
+	for (i = 0; i < nvt; i++) {
+		int v = vt[i].v, t = vt[i].t, obst = c->tri_obstacle[t];
+		struct collide_pair p;
+
+		if ((i & 4095) == 0 && pairs_stop_asked(c))
+			return 1;
+		if (obst < 0 && v < c->ncloth && !c->opt.self)
+			continue;
+		if (v >= c->ncloth && obst >= 0)
+			continue;	/* both the meshes' */
+		if (v >= c->ncloth)
+			obst = vertex_obstacle(c, v);
+		p = (struct collide_pair){ .vert = { v, c->tri[3 * t], c->tri[3 * t + 1],
+		    c->tri[3 * t + 2] }, .other = t, .obstacle = obst };
+		if ((rc = each_pair_one(c, &p, fn, ctx)) != 0)
+			return rc;
+	}
+	for (i = 0; i < nee; i++) {
+		const int *a = c->edge + 2 * ee[i].a, *b = c->edge + 2 * ee[i].b;
+		int obst = -1;
+		struct collide_pair p;
+
+		if ((i & 4095) == 0 && pairs_stop_asked(c))
+			return 1;
+		if (b[0] >= c->ncloth)
+			obst = vertex_obstacle(c, b[0]);
+		else if (a[0] >= c->ncloth)
+			obst = vertex_obstacle(c, a[0]);
+		if (obst < 0 && !c->opt.self)
+			continue;
+		p = (struct collide_pair){ .vert = { a[0], a[1], b[0], b[1] }, .other = -1 - ee[i].b,
+		    .obstacle = obst };
+		if ((rc = each_pair_one(c, &p, fn, ctx)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
 int
 collide_add_event(struct collide *c, long step, int node, enum contact_type type, int other,
     int obstacle, vec3 q, vec3 n, double vn_before, double vn_after)

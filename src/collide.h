@@ -126,6 +126,24 @@ int collide_check(struct collide *c, long step, double dt, const double *y0, dou
 int collide_candidates(struct collide *c, const double *y0, double h, double margin, double share,
     double near, double near_motion, struct drape_err *err);
 
+/* A pair of collide_candidates, as the fast path's contacts take it: a
+ * vertex then a triangle's three vertices (other: the triangle), or two
+ * edges' (other: -1 - the second edge); the mesh's obstacle, or -1 for
+ * cloth on cloth, and the friction between the two. */
+struct collide_pair {
+	int vert[4];
+	int other;
+	int obstacle;
+	double mu;
+};
+
+/* Calls fn on each pair of the last collide_candidates that the scene
+ * collides (cloth on cloth with self-contact only, never two meshes) and
+ * whose two sides' boxes overlap, in the broad phase's order. 0; 1 when
+ * the stop flag is set (the step is given up); else fn's first nonzero. */
+int collide_each_pair(const struct collide *c, int (*fn)(void *ctx, const struct collide_pair *p),
+    void *ctx);
+
 /* Records a contact of the step as an event (and a correction); 0, or -1
  * out of memory. */
 int collide_add_event(struct collide *c, long step, int node, enum contact_type type, int other,

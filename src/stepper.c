@@ -500,14 +500,14 @@ stepper_step(struct stepper *st, struct step_failure *f)
 
 		if (s != STEP_OK)
 			return s;
-		pbd_step(&st->pb, st->t, h, st->y, st->y_next, &st->ct, &st->col);
+		pbd_step(&st->pb, st->t, h, st->y, st->y_next, &st->ct);
 		h_next = h;
 	} else if (st->in.kind == INTEG_BDF2) {
 		enum step_status s = fast_contacts(st, h, f);
 
 		if (s != STEP_OK)
 			return s;
-		bdf2_step(&st->bd, st->t, h, st->y, st->y_next, &st->ct, &st->col);
+		bdf2_step(&st->bd, st->t, h, st->y, st->y_next, &st->ct);
 		h_next = h;
 		if (st->bd.stopped) {
 			snprintf(f->why, sizeof f->why, "stopped by a signal");

@@ -21,7 +21,7 @@ struct bvh_node {
 	/* the triangles under it: leaf_tri[first .. first + count) */
 	int first, count;
 	bool patch;		/* a whole rectangle of the cloth's grid (a flat patch
-				 * may be left out; broad.c) */
+				 * may be left out; broad_bvh.c) */
 };
 
 /* seed: the nodes' hash */

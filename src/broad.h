@@ -3,7 +3,8 @@
  *
  * - bvh (broad_bvh.c), the shipped scenes' (tablecloth, strip): grid's
  *   pairs from a tree of boxes, less those inside a patch of the cloth
- *   proven flat over the step ("flat patches"), which cannot touch;
+ *   proven flat over the step (broad_flat.c), which cannot touch, and
+ *   held from one search to the next (broad_held.c);
  * - seed (broad_seed.c): the chapter's spatial enumeration (§3.3): nodes
  *   hashed by their predicted position (eq. 18-20); two nodes in one cube
  *   give the pairs (node A, triangles of B) and (node B, triangles of A),

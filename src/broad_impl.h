@@ -1,6 +1,7 @@
 /* broad_impl.h: what the broad phases share, inside the broad module only
  * (broad.c runs a search; broad_brute.c, broad_seed.c, broad_grid.c and
- * broad_bvh.c are its phases, each with a part of struct broad its own). */
+ * broad_bvh.c with broad_flat.c and broad_held.c are its modes, each with
+ * a part of struct broad its own). */
 #ifndef DRAPE_BROAD_IMPL_H
 #define DRAPE_BROAD_IMPL_H
 
@@ -21,7 +22,7 @@ struct bvh_node {
 	/* the triangles under it: leaf_tri[first .. first + count) */
 	int first, count;
 	bool patch;		/* a whole rectangle of the cloth's grid (a flat patch
-				 * may be left out; broad_bvh.c) */
+				 * may be left out; broad_flat.c) */
 };
 
 /* seed: the nodes' hash */
@@ -151,6 +152,37 @@ bool broad_grid_holds(const struct broad *b, const struct geom *g, double cell,
 void broad_grid_keep(struct broad *b, const struct geom *g, double cell, const struct broad_want *want);
 void broad_grid_free(struct broad *b);
 void broad_bvh_free(struct broad *b);
+
+/* bvh's parts: the trees (broad_bvh.c), the flat patches (broad_flat.c)
+ * and the held pairs (broad_held.c). */
+static inline int bvh_leaf(const struct bvh_node *n) { return n->left < 0; }
+/* broad_bvh.c: every pair of leaves under x and y (x == y: a subtree
+ * against itself) whose boxes overlap; the pairs sorted (a radix sort);
+ * triangle t's box from its vertices' query boxes; the trees refitted to
+ * those boxes. 0, or -1 out of memory or stopped. */
+int bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *want, int x, int y);
+int bvh_sort(struct broad *b, const struct geom *g);
+void bvh_tri_box(double *bx, const struct broad *b, const struct geom *g, int t);
+void bvh_refit(struct broad *b, const struct geom *g);
+/* broad_flat.c: triangle t's deformation at x0 (k = 0) or x1 (k = 1); the
+ * nodes [x, end)'s sums of them; each triangle's for a search; whether
+ * patch p is flat enough for it (the proof there); a patch left out. */
+void bvh_tri_deform(struct broad *b, const struct geom *g, int t, int k);
+void bvh_node_sums(struct broad *b, int x, int end);
+int bvh_cull_prepare(struct broad *b, const struct geom *g, const struct broad_want *want);
+int bvh_patch_flat(struct broad *b, const struct geom *g, const struct bvh_node *p);
+int bvh_push_cull(struct broad *b, int x);
+/* broad_held.c: the search's pairs from the held ones, or a traversal
+ * that holds them (0, or -1 out of memory or stopped); each triangle's
+ * box of the search; the sorted lists without repeats; patch x judged
+ * for the search (1: left out again, 0: its pairs found, -1); the query
+ * boxes, widened by skin. */
+int bvh_held_find(struct broad *b, const struct geom *g, const struct broad_want *want, double cell);
+int bvh_fill_tri_boxes(struct broad *b, const struct geom *g);
+void bvh_unique_pairs(struct broad *b);
+int bvh_judge_patch(struct broad *b, const struct geom *g, const struct broad_want *want, int x);
+void bvh_fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want *want,
+    double skin);
 
 
 static inline bool

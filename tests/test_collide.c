@@ -532,7 +532,7 @@ held_search(struct broad *b, struct geom g, const double *xa, const double *xb, 
 }
 
 /* bvh holds a traversal's pairs and serves later searches from them
- * (broad_bvh.c, "held pairs"): what they give must be exactly a traversal's.
+ * (broad_held.c): what they give must be exactly a traversal's.
  * The motions of a real run (the tablecloth falling on an icosahedron's
  * mesh and on itself), searched as the fast path does (a search with a
  * near test, then the check's over the motion made, with some vertices
@@ -619,7 +619,7 @@ test_bvh_held_pairs(void **state)
 	scene_free(&sc);
 }
 
-/* ---- flat patches (broad_bvh.c): what bvh leaves out must be harmless ---- */
+/* ---- flat patches (broad_flat.c): what bvh leaves out must be harmless ---- */
 
 #define PI 3.14159265358979323846
 

@@ -165,7 +165,7 @@ struct replay_writer {
 	unsigned char *buf;	/* scratch, grown as needed */
 	size_t bufcap;
 	/* the chunks being deflated beside the run, written in order a few
-	 * chunks later, at a flush or at close (replay.c write_chunk) */
+	 * chunks later, at a flush or at close (replay_writer.c write_chunk) */
 	struct replay_jobs *jobs;
 	long next_key;		/* the keyframe the next chunk is, or -1 */
 	bool next_provisional;	/* the next chunk is (see flush_every) */

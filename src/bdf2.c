@@ -8,6 +8,7 @@
 #include "contacts.h"
 #include "mg.h"
 #include "obstacle.h"
+#include "stop.h"
 #include "vec3.h"
 
 /* A penalty's stiffness over the inertia m / beta^2 of what it pushes: at
@@ -918,7 +919,7 @@ dot(const double *a, const double *c, size_t n)
 static bool
 stop_asked(struct bdf2 *b)
 {
-	if (b->stop != NULL && *b->stop)
+	if (stop_set(b->stop))
 		b->stopped = true;
 	return b->stopped;
 }

@@ -127,7 +127,7 @@ sort_runs(struct broad *b)
 
 	for (i = 0; i < b->nvt; i = j) {
 		if (i >= poll) {
-			if (stop_asked(b))
+			if (stop_set(b->stop))
 				return -1;
 			poll = i + SORT_POLL_PAIRS;
 		}
@@ -148,7 +148,7 @@ sort_runs(struct broad *b)
 	}
 	for (i = 0, poll = 0; i < b->nee; i = j) {
 		if (i >= poll) {
-			if (stop_asked(b))
+			if (stop_set(b->stop))
 				return -1;
 			poll = i + SORT_POLL_PAIRS;
 		}
@@ -228,7 +228,7 @@ broad_find(struct broad *b, const struct geom *g, double cell, const struct broa
 		rc = sort_runs(b);	/* found vertex by vertex, each triangle once */
 	if (rc != 0) {
 		b->nvt = b->nee = 0;
-		if (stop_asked(b)) {
+		if (stop_set(b->stop)) {
 			b->stopped = true;
 			err_set(err, "broad phase: stopped by a signal");
 		} else if (b->over_memory) {

@@ -11,7 +11,7 @@ broad_find_brute(struct broad *b, const struct geom *g, const struct broad_want 
 	for (v = 0; v < g->nv; v++) {
 		if (v >= g->ncloth && !want->mesh_vertices)
 			break;
-		if (stop_asked(b))
+		if (stop_set(b->stop))
 			return -1;
 		for (t = 0; t < g->ntri; t++)
 			if (!tri_has(g, (int)t, v) && !vt_static(g, v, (int)t) &&
@@ -19,7 +19,7 @@ broad_find_brute(struct broad *b, const struct geom *g, const struct broad_want 
 				return -1;
 	}
 	for (e = 0; want->edges && e < g->nedges; e++) {
-		if (stop_asked(b))
+		if (stop_set(b->stop))
 			return -1;
 		for (f = e + 1; f < g->nedges; f++)
 			if (!ee_skip(g, (int)e, (int)f) && push_ee(b, (int)e, (int)f) != 0)

@@ -511,7 +511,7 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 		x = st[--top];
 		p = &b->bvh.node[x];
 		q = &b->bvh.node[y];
-		if ((++visits & 4095) == 0 && stop_asked(b))
+		if (stop_poll(++visits, b->stop))
 			return -1;
 		/* A subtree against itself: every pair of its leaves, unless it
 		 * is a flat patch (above). A normal cone alone does not prune
@@ -749,7 +749,7 @@ broad_recheck(struct broad *b, const struct geom *g, const unsigned char *change
 	if (rc >= 0 && given && bvh_sort(b, g) != 0)
 		rc = -1;
 	if (rc < 0) {
-		b->stopped = stop_asked(b);
+		b->stopped = stop_set(b->stop);
 		return -1;
 	}
 	if (given)

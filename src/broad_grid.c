@@ -145,7 +145,7 @@ fill_boxes(struct broad *b, struct spatial_hash *h, size_t first, size_t count, 
 	for (i = first; i < first + count; i++) {
 		if (b->grid.is_big[i])
 			continue;
-		if ((i & 255) == 0 && stop_asked(b))
+		if (stop_poll(i, b->stop))
 			return -1;
 		cube_range(h, box + 6 * i, lo, hi);
 		for (y = lo[1]; y <= hi[1]; y++)
@@ -322,7 +322,7 @@ broad_find_grid(struct broad *b, const struct geom *g, double cell, const struct
 	for (v = 0; v < g->nv; v++) {
 		if (v >= g->ncloth && !want->mesh_vertices)
 			break;
-		if ((v & 255) == 0 && stop_asked(b))
+		if (stop_poll(v, b->stop))
 			return -1;
 		box_empty(qb);
 		allowed_box(qb, b, v);
@@ -336,7 +336,7 @@ broad_find_grid(struct broad *b, const struct geom *g, double cell, const struct
 			return -1;
 	}
 	for (i = 0; want->edges && i < g->nedges; i++) {
-		if ((i & 255) == 0 && stop_asked(b))
+		if (stop_poll(i, b->stop))
 			return -1;
 		if (query_edges(b, g, i, edge_limit) != 0)
 			return -1;

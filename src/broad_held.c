@@ -264,13 +264,13 @@ held_dirty(struct broad *b, const struct geom *g, const struct broad_want *want)
 				return -1;
 	}
 	for (j = 0; j < nt; j++) {
-		if ((j & 255) == 255 && stop_asked(b))
+		if (stop_poll(j, b->stop))
 			return -1;
 		if (held_query_triangle(b, g, want, dt[j]) != 0)
 			return -1;
 	}
 	for (i = 0; i < ne; i++) {
-		if ((i & 255) == 255 && stop_asked(b))
+		if (stop_poll(i, b->stop))
 			return -1;
 		if (held_query_edge(b, g, want, de[i]) != 0)
 			return -1;

@@ -13,6 +13,7 @@
 
 #include "broad.h"
 #include "hash.h"
+#include "stop.h"
 
 struct bvh_node {
 	double box[6];
@@ -183,13 +184,6 @@ void bvh_unique_pairs(struct broad *b);
 int bvh_judge_patch(struct broad *b, const struct geom *g, const struct broad_want *want, int x);
 void bvh_fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want *want,
     double skin);
-
-
-static inline bool
-stop_asked(const struct broad *b)
-{
-	return b->stop != NULL && *b->stop;
-}
 
 static inline int
 grow(void **p, size_t *cap, size_t need, size_t size)

@@ -47,7 +47,7 @@ broad_find_seed(struct broad *b, const struct geom *g, double cell, const struct
 	}
 	/* the hash table is filled with every node's predicted position */
 	for (v = 0; v < g->nv; v++) {
-		if ((v & 1023) == 0 && stop_asked(b))
+		if (stop_poll(v, b->stop))
 			return -1;
 		hash_cube_of(h, v3_load(g->x1 + 3 * v), d);
 		if (hash_insert(h, hash_key(h, d[0], d[1], d[2]), v) != 0)
@@ -59,7 +59,7 @@ broad_find_seed(struct broad *b, const struct geom *g, double cell, const struct
 
 		if (c->count < 2)
 			continue;
-		if ((i & 255) == 0 && stop_asked(b))
+		if (stop_poll(i, b->stop))
 			return -1;
 		for (e = c->head; e >= 0; e = h->next[e])
 			for (f = h->next[e]; f >= 0; f = h->next[f]) {

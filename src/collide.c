@@ -137,14 +137,6 @@ boxes_overlap(const struct collide *c, const struct collide_pair *cp)
 	return true;
 }
 
-/* A signal asks the run to stop: a fast cloth's millions of candidate
- * pairs take a good part of a second to look at. */
-static bool
-pairs_stop_asked(const struct collide *c)
-{
-	return c->stop != NULL && *c->stop;
-}
-
 /* A mesh vertex's obstacle: that of its first triangle. */
 static int
 vertex_obstacle(const struct collide *c, int v)
@@ -178,7 +170,7 @@ collide_each_pair(const struct collide *c, int (*fn)(void *ctx, const struct col
 		int v = vt[i].v, t = vt[i].t, obst = c->tri_obstacle[t];
 		struct collide_pair p;
 
-		if ((i & 4095) == 0 && pairs_stop_asked(c))
+		if (stop_poll(i, c->stop))
 			return 1;
 		if (obst < 0 && v < c->ncloth && !c->opt.self)
 			continue;
@@ -196,7 +188,7 @@ collide_each_pair(const struct collide *c, int (*fn)(void *ctx, const struct col
 		int obst = -1;
 		struct collide_pair p;
 
-		if ((i & 4095) == 0 && pairs_stop_asked(c))
+		if (stop_poll(i, c->stop))
 			return 1;
 		if (b[0] >= c->ncloth)
 			obst = vertex_obstacle(c, b[0]);

@@ -239,7 +239,7 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 		long before = c->st.n[STAT_CORRECTIONS];
 
 		memset(c->changed_next, 0, (size_t)c->nv);
-		if (c->stop != NULL && *c->stop) {
+		if (stop_set(c->stop)) {
 			c->stopped = true;	/* a signal: collide_step gives the step up */
 			return 0;
 		}
@@ -256,7 +256,7 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 		for (i = 0; c->pairs && i < nvt; i++) {
 			int vv = vt[i].v, t = vt[i].t;
 
-			if ((i & 4095) == 0 && c->stop != NULL && *c->stop) {
+			if (stop_poll(i, c->stop)) {
 				c->stopped = true;
 				return 0;
 			}
@@ -289,7 +289,7 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 			vec3 x0[4], x1[4];
 			double toi;
 
-			if ((i & 4095) == 0 && c->stop != NULL && *c->stop) {
+			if (stop_poll(i, c->stop)) {
 				c->stopped = true;
 				return 0;
 			}

@@ -12,6 +12,7 @@
 #include "network.h"
 #include "pbd.h"
 #include "stepper.h"
+#include "stop.h"
 #include "vec3.h"
 
 struct stepper {
@@ -571,7 +572,7 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	/* a signal since the long loops last looked (the checks above take a
 	 * third of a second on 590,000 nodes under the sanitizers): the step
 	 * is still under way, so it is given up as theirs would be */
-	if (st->stop != NULL && *st->stop) {
+	if (stop_set(st->stop)) {
 		snprintf(f->why, sizeof f->why, "stopped by a signal");
 		return failed(st, f, STEP_STOPPED, -1);
 	}

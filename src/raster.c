@@ -130,7 +130,7 @@ shade(vec3 n)
 {
 	static const char ramp[] = RASTER_RAMP;
 	const int len = (int)sizeof ramp - 1;
-	vec3 light = v3(-0.35, 0.6, 0.72);
+	vec3 light = RASTER_LIGHT;
 	double len_n = v3_len(n), lit;
 	int k;
 

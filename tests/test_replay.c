@@ -992,6 +992,17 @@ resume_every_keyframe_fast(void **state)
 	resume_every_keyframe_of(tiny_fast_scene, 15);
 }
 
+/* bdf2 keeps the state one step back, which its keyframes hold (replay
+ * version 5), so it resumes exactly from each: at steps 0 (no history
+ * yet), 5, 10, ... of a cloth landing on the floor with self-contact. */
+static void
+resume_every_keyframe_bdf2(void **state)
+{
+	(void)state;
+	resume_every_keyframe_of("[simulation]\nname = tiny-bdf2\nduration = 0.1 s\ndt = auto\n"
+	    "integrator = bdf2\noutput_rate = 50\n" TINY_CLOTH, 5);
+}
+
 /* What a restore checks: a saved state is taken only whole and only into
  * its own run (stepper_restore: the node count, dt_set, the hash, and st
  * untouched by a refusal), so a replay resumes only into the scene it was
@@ -1677,6 +1688,7 @@ main(void)
 		cmocka_unit_test(digest_mismatch),
 		cmocka_unit_test(resume_every_keyframe),
 		cmocka_unit_test(resume_every_keyframe_fast),
+		cmocka_unit_test(resume_every_keyframe_bdf2),
 		cmocka_unit_test(restore_checks),
 		cmocka_unit_test(cli_record_resume),
 		cmocka_unit_test(cli_events_node),

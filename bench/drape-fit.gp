@@ -25,10 +25,14 @@ set ylabel "Cusick drape coefficient"
 set key top left
 set title sprintf("scenes/drape.scene, %s: DC against B (%s)", integ, stamp) noenhanced
 set arrow from graph 0, first target to graph 1, first target nohead dt 2 lc rgb "#555555"
-set label 1 sprintf("target %.3g", target) at graph 0.99, first target right offset 0, 0.7
+# The labels keep clear of the points: the target's at the left end of its
+# line (the fit lands on that line, near the right, where its run number
+# goes), the fitted B's left of its line (to the right it ran off the
+# chart when the fit is near the largest B swept).
+set label 1 sprintf("target %.3g", target) at graph 0.01, first target left offset 0, 0.7
 if (fit ne "-") {
 	set arrow from first fit * 1e6, graph 0 to first fit * 1e6, graph 1 nohead dt 3 lc rgb "#d62728"
-	set label 2 sprintf("fitted B %.3g uN*m", fit * 1e6) at first fit * 1e6, graph 0.06 left offset 0.5, 0 tc rgb "#d62728"
+	set label 2 sprintf("fitted B %.3g uN*m", fit * 1e6) at first fit * 1e6, graph 0.06 right offset -0.5, 0 tc rgb "#d62728"
 }
 sweep(p) = p eq "sweep"
 plot csv skip 1 using (sweep(strcol(1)) ? $3 * 1e6 : NaN):6 with linespoints pt 7 ps 1.2 lc rgb "#1f77b4" title "sweep", \

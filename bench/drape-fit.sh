@@ -19,7 +19,7 @@
 #     jumps there, as when the number of folds changes), is said so.
 #
 # It prints the fitted B and the runs it took, writes
-# $BENCH_RESULTS/drape-fit.csv (every run: phase, B, B_warp, B_weft, the
+# $BENCH_RESULTS/drape-fit.csv (./drape-fit/ unless set) (every run: phase, B, B_warp, B_weft, the
 # drape coefficient, exit status, wall time) and, with gnuplot, the chart
 # of the drape coefficient against B to drape-fit.png (and on the dumb
 # terminal). See bench/README.md and README.md ("Sweeps").
@@ -50,11 +50,17 @@
 #   BENCH_FIT_UNTIL       simulated time of each run (default: the scene's 3 s)
 #   BENCH_FIT_JOBS        jobs at once in the sweep (default: a job a core)
 #   BENCH_FIT_SWEEP_ARGS  more options for bench/sweep.sh (e.g. "-S 8/node1,node2,:")
-#   BENCH_RESULTS, DRAPE, BENCH_SRCDIR, GNUPLOT
+#   BENCH_RESULTS         where drape-fit.csv and .png go (default: drape-fit/ in the
+#                         current directory; make bench sets bench/results)
+#   DRAPE, BENCH_SRCDIR, GNUPLOT
 set -u
 
 prog=drape-fit.sh
 here=$(cd "$(dirname "$0")" && pwd)
+# Run by hand, for one's own fabric as README.md says, it writes in the
+# current directory: bench/results holds the shipped results, tracked, and
+# a study replaced them unsaid. make bench (BENCH_RESULTS set) remakes them.
+[ -n "${BENCH_RESULTS:-}" ] || { BENCH_RESULTS=$PWD/drape-fit; export BENCH_RESULTS; }
 . "$here/lib.sh"
 
 target=${BENCH_FIT_DC:-0.684}
@@ -119,6 +125,11 @@ echo "drape coefficient fit on scenes/drape.scene: $version (commit $commit), $s
 echo "target DC $target (to ${tol} relative); $DC_SOURCE"
 echo "B = sqrt(B_warp B_weft), warp/weft ratio kept (the scene: $(awk -v a="$bwarp0" -v b="$bweft0" -v g="$b0" 'BEGIN { printf "%.3g and %.3g uN*m, B %.4g uN*m", a * 1e6, b * 1e6, g * 1e6 }'));"
 echo "integrator $integ, ${until_t:-3} s simulated; $ncpu cores, load $(load)"
+if [ "$(cd "$results" && pwd -P)" = "$(cd "$srcdir/bench/results" 2>/dev/null && pwd -P)" ]; then
+	echo "writing to $results: replacing the shipped drape-fit.csv and drape-fit.png"
+else
+	echo "writing to $results"
+fi
 echo
 
 # 1. the sweep

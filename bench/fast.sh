@@ -273,7 +273,7 @@ if want 8; then
 	for s in tablecloth strip; do
 		for dt in 0.005 0.01 0.02 0.04 0.08 0.16; do
 			[ -t 2 ] && printf '\r  %s at dt %s          ' "$s" "$dt" >&2
-			set -- --set simulation.integrator=fast --set collision.broad=bvh --set "simulation.dt=$dt"
+			set -- --set simulation.integrator=fast --set collision.broad=bvh --set "simulation.dt=$dt s"
 			"$drape" run --headless "$@" "$srcdir/scenes/$s.scene" >"$tmp/out" 2>"$tmp/err"
 			rc=$?
 			w=$(wall_of <"$tmp/out")

@@ -177,7 +177,7 @@ wall_of() { awk '/^wall time / { print $3 }'; }
 peers_table() { # n bending_uNm integrator
 	awk -v n="$1" -v b="$2" -v m="$3" 'BEGIN {
 		h = 0.24 / (n - 1); t = 0.25 * h
-		printf "[simulation]\nduration = 2 s\ndt = auto\nintegrator = %s\noutput_rate = 50\n", m
+		printf "[simulation]\nduration = 2 s\ndt = auto\nintegrator = %s\noutput_rate = 50 Hz\n", m
 		printf "[cloth]\nnodes = %d %d\nspacing = %.9g m\norigin = -0.12 0.2 -0.12 m\n", n, n, h
 		printf "orientation = +x +z\nweight = 100 g/m2\nthickness = %.9g m\n", t
 		printf "modulus_warp = %.9g Pa\nmodulus_weft = %.9g Pa\nshear_modulus = %.9g Pa\n", 50 / t, 50 / t, 5 / t

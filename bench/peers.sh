@@ -83,7 +83,7 @@ echo
 peers_strip() {
 	awk -v m="$1" 'BEGIN {
 		h = 0.005; t = 0.25 * h; a = 10 * atan2(0, -1) / 180; c = cos(a); s = sin(a); g = 9.80665
-		printf "[simulation]\nduration = 2 s\ndt = auto\nintegrator = %s\noutput_rate = 50\n", m
+		printf "[simulation]\nduration = 2 s\ndt = auto\nintegrator = %s\noutput_rate = 50 Hz\n", m
 		printf "gravity = 0 %.9g %.9g m/s2\n", -g * c, g * s
 		printf "[cloth]\nnodes = 125 3\nspacing = %.9g m\norigin = -0.005 0 0 m\n", h
 		printf "orientation = +y +x\nweight = 100 g/m2\nthickness = %.9g m\n", t

@@ -103,7 +103,7 @@ sweep_rows() { # dir rows: the sweep, then its rows as
 		failure.t error
 }
 header=$(printf 'collision.broad\tcollision.narrow\tcollision.position\tsimulation.duration')
-{ echo "$header"; for p in $policies; do read -r b n pos <<<"$(settings "$p")"; printf '%s\t%s\t%s\t%s\n' "$b" "$n" "$pos" "$last"; done; } >"$tmp/last.tsv"
+{ echo "$header"; for p in $policies; do read -r b n pos <<<"$(settings "$p")"; printf '%s\t%s\t%s\t%s s\n' "$b" "$n" "$pos" "$last"; done; } >"$tmp/last.tsv"
 sweep_rows "$tmp/last" "$tmp/last.tsv" >"$tmp/last.rows"
 echo "$header" >"$tmp/early.tsv"
 i=0
@@ -118,7 +118,7 @@ for p in $policies; do
 		3) awk -v t="$t" -v f="$ft" 'BEGIN { exit !(t <= f) }' || continue ;;
 		*) continue ;;
 		esac
-		printf '%s\t%s\t%s\t%s\n' "$b" "$n" "$pos" "$t" >>"$tmp/early.tsv"
+		printf '%s\t%s\t%s\t%s s\n' "$b" "$n" "$pos" "$t" >>"$tmp/early.tsv"
 	done
 done
 if [ "$(wc -l <"$tmp/early.tsv")" -gt 1 ]; then sweep_rows "$tmp/early" "$tmp/early.tsv" >"$tmp/early.rows"
@@ -130,6 +130,7 @@ for p in $policies; do
 	cat "$tmp/early.rows" "$tmp/last.rows" |
 	while IFS=$'\037' read -r rb rn rpos t rc et ek wall ft err; do
 		[ "$rb $rn $rpos" = "$b $n $pos" ] || continue
+		t=${t% s}	# the grid's duration, with its unit
 		# the summary's figures: total %.6e, kinetic %.4e
 		en=$(awk -v e="$et" -v k="$ek" 'BEGIN { if (e == "") print "-,-"; else printf "%.6e,%.4e\n", e, k }')
 		wall=$(awk -v w="$wall" 'BEGIN { printf "%.2f", w }')

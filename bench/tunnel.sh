@@ -135,7 +135,7 @@ for r in $ratios; do
 		until_t=$(awk -v y="$y0" -v v="$v" 'BEGIN { printf "%.6g", 2 * y / 1000 / v }')
 		for bn in $combos; do
 			b=${bn%/*} n=${bn#*/}
-			printf '%s\t%s\t0 -%s 0 m/s\t%s %s %s mm\t%s\n' "$b" "$n" "$v" "$x0" "$y0" "$x0" "$until_t" >>"$rowsf"
+			printf '%s\t%s\t0 -%s 0 m/s\t%s %s %s mm\t%s s\n' "$b" "$n" "$v" "$x0" "$y0" "$x0" "$until_t" >>"$rowsf"
 			echo "$r $v $b $n $k $x0 $y0 $until_t" >>"$metaf"
 		done
 	done

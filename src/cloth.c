@@ -67,14 +67,38 @@ node_mass(const struct cloth *cl, const unsigned char *sq, double weight, int i,
 	    square_at(cl, sq, i, j - 1) + square_at(cl, sq, i - 1, j) + square_at(cl, sq, i, j));
 }
 
-/* Grid position (i, j) lies in the circle inscribed in the grid. In half
- * spacings from the centre, so that the test is exact integer arithmetic. */
+/* Grid position (i, j) lies in the circle inscribed in an nu x nv grid. In
+ * half spacings from the centre, so that the test is exact integer
+ * arithmetic. */
+static int
+in_circle(int nu, int nv, int i, int j)
+{
+	long di = 2L * i - (nu - 1), dj = 2L * j - (nv - 1), r = nu - 1;
+
+	return di * di + dj * dj <= r * r;
+}
+
 static int
 in_disc(const struct cloth *cl, int i, int j)
 {
-	long di = 2L * i - (cl->nu - 1), dj = 2L * j - (cl->nv - 1), r = cl->nu - 1;
+	return in_circle(cl->nu, cl->nv, i, j);
+}
 
-	return di * di + dj * dj <= r * r;
+/* The square (i, j)..(i + 1, j + 1) of a disc: its four corners in it. */
+static bool
+disc_square(int nu, int nv, int i, int j)
+{
+	return i >= 0 && j >= 0 && i + 1 < nu && j + 1 < nv && in_circle(nu, nv, i, j) &&
+	    in_circle(nu, nv, i + 1, j) && in_circle(nu, nv, i, j + 1) &&
+	    in_circle(nu, nv, i + 1, j + 1);
+}
+
+bool
+cloth_grid_has_node(enum cloth_shape shape, int nu, int nv, int i, int j)
+{
+	return shape == SHAPE_SQUARE || disc_square(nu, nv, i - 1, j - 1) ||
+	    disc_square(nu, nv, i, j - 1) || disc_square(nu, nv, i - 1, j) ||
+	    disc_square(nu, nv, i, j);
 }
 
 /* The squares that are cloth (sq, (nu-1)*(nv-1) flags), then the nodes

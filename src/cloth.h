@@ -67,6 +67,11 @@ struct cloth {
 };
 
 int cloth_build(struct cloth *cl, const struct scene *sc, struct drape_err *err);
+
+/* Whether grid position (i, j) is a node of a cloth of this shape on an
+ * nu x nv grid, before any is built (a disc keeps the corners of its whole
+ * squares, as cloth_build does). */
+bool cloth_grid_has_node(enum cloth_shape shape, int nu, int nv, int i, int j);
 void cloth_free(struct cloth *cl);
 
 /* A hinge whose middle node and one neighbour are held is a clamp: only

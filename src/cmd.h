@@ -36,9 +36,17 @@ struct step_failure;
  * error that is not the simulation's. */
 int cmd_step_failed(const char *cmd, const char *path, const struct step_failure *f);
 
-/* After getopt_long returned '?' for command cmd: says which option was
- * unknown or lacked its value, then the usage; returns EXIT_USAGE. */
+/* After getopt_long returned '?' for command cmd: says on one line which
+ * option was unknown or lacked its value, and where the usage is (30 lines
+ * of it pushed the one that mattered off the screen); returns EXIT_USAGE. */
 int cmd_option_error(const char *cmd, char **argv);
+
+/* "drape CMD: MESSAGE; see drape --help" on stderr; returns EXIT_USAGE.
+ * For the command line's mistakes: the usage is one option away. */
+int cmd_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* The command nearest name (a typing slip away), or NULL. */
+const char *cmd_nearest(const char *name, const char *const *names, size_t n);
 
 /* The signal (SIGINT, SIGTERM, SIGHUP) that asked a command which calls
  * cmd_catch_signals to stop, or 0. */

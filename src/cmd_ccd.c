@@ -254,16 +254,11 @@ cmd_ccd(int argc, char **argv)
 			ccd_usage(stdout);
 			return EXIT_OK;
 		default:
-			fprintf(stderr, "drape ccd: '%s': unknown option, or its value is missing\n",
-			    argv[optind - 1]);
-			ccd_usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("ccd", argv);
 		}
 	}
 	if (optind >= argc) {
-		fprintf(stderr, "drape ccd: expected at least one FILE.csv\n");
-		ccd_usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("ccd", "expected at least one FILE.csv");
 	}
 	n = argc - optind;
 	if ((qf = calloc((size_t)n, sizeof *qf)) == NULL) {

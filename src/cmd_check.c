@@ -140,6 +140,7 @@ check_options(int argc, char **argv, long *every, const char **sets, size_t *nse
 	int ch, i;
 
 	optind = 1;
+	opterr = 0;
 	while ((ch = getopt_long(argc, argv, "e:h", longopts, NULL)) != -1) {
 		switch (ch) {
 		case 'e':
@@ -158,14 +159,11 @@ check_options(int argc, char **argv, long *every, const char **sets, size_t *nse
 			    "SCENE|OBJ...\n");
 			return -1;
 		default:
-			fprintf(stderr, "usage: drape check [--every N] [--set SECTION.KEY=VALUE]... "
-			    "SCENE|OBJ...\n");
-			return EXIT_USAGE;
+			return cmd_option_error("check", argv);
 		}
 	}
 	if (optind >= argc) {
-		fprintf(stderr, "drape check: expected scene or OBJ files\n");
-		return EXIT_USAGE;
+		return cmd_usage_error("check", "expected scene or OBJ files");
 	}
 	for (i = optind; i < argc; i++)
 		if (*nsets > 0 && ends_with(argv[i], ".obj")) {

@@ -41,7 +41,8 @@ gap_say(struct gap *g, const char *file)
 static void
 gap_add(struct gap *g, const char *file, const struct replay_chunk *c, const char *why)
 {
-	unsigned long first = (unsigned long)c->first_step, last = first + c->count - 1;
+	unsigned long first = (unsigned long)step_shown((long)c->first_step),
+	    last = first + c->count - 1;
 
 	if (g->open && first == g->last + 1 && strcmp(why, g->why) == 0) {
 		g->last = last;
@@ -100,16 +101,11 @@ cmd_events(int argc, char **argv)
 			usage(stdout);
 			return EXIT_OK;
 		default:
-			fprintf(stderr, "drape events: unknown option or missing value: '%s'\n",
-			    argv[optind - 1]);
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_option_error("events", argv);
 		}
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape events: expected one replay file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("events", "expected one replay file");
 	}
 	if (replay_open(&r, argv[optind], &err) != 0) {
 		fprintf(stderr, "drape events: %s\n", err.msg);
@@ -131,8 +127,9 @@ cmd_events(int argc, char **argv)
 		const struct replay_chunk *ch = &r.chunk[i];
 		int got;
 
-		if (!replay_is_steps(ch->kind) || (long)ch->first_step > to ||
-		    (long)(ch->first_step + ch->count) <= from)
+		/* the chunk's steps as shown: first_step + 1 to first_step + count */
+		if (!replay_is_steps(ch->kind) || step_shown((long)ch->first_step) > to ||
+		    (long)(ch->first_step + ch->count) < from)
 			continue;
 		if ((got = replay_events_read(&re, i, &ss, &err)) != 0) {
 			if (got == REPLAY_EVENTS_UNAVAILABLE) {
@@ -147,11 +144,12 @@ cmd_events(int argc, char **argv)
 		for (e = 0; e < ss.nev; e++) {
 			const struct contact_event *ev = &ss.ev[e];
 
-			if (ev->step < from || ev->step > to || (node >= 0 && ev->node != node) ||
+			if (step_shown(ev->step) < from || step_shown(ev->step) > to ||
+			    (node >= 0 && ev->node != node) ||
 			    (type >= 0 && (int)ev->type != type))
 				continue;
 			printf("%ld\t%d\t%s\t%d\t%d\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t"
-			    "%.17g\t%.17g\n", ev->step, ev->node, contact_type_name[ev->type],
+			    "%.17g\t%.17g\n", step_shown(ev->step), ev->node, contact_type_name[ev->type],
 			    ev->other, ev->obstacle, ev->q.x, ev->q.y, ev->q.z,
 			    ev->n.x, ev->n.y, ev->n.z, ev->vn_before, ev->vn_after);
 		}

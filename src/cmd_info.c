@@ -87,10 +87,10 @@ cmd_info(int argc, char **argv)
 		usage(stdout);
 		return EXIT_OK;
 	}
-	if (argc != 2 || argv[1][0] == '-') {
-		fprintf(stderr, "drape info: expected one replay file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+	if (argc >= 2 && argv[1][0] == '-')
+		return cmd_usage_error("info", "unknown option '%s'", argv[1]);
+	if (argc != 2) {
+		return cmd_usage_error("info", "expected one replay file");
 	}
 	if (replay_open(&r, argv[1], &err) != 0) {
 		fprintf(stderr, "drape info: %s\n", err.msg);

@@ -353,9 +353,7 @@ cmd_plot(int argc, char **argv)
 		}
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape plot: expected one replay file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("plot", "expected one replay file");
 	}
 	path = argv[optind];
 	if (cmd_output_spares("plot", "--png", png, path, "the replay being plotted") != EXIT_OK)

@@ -60,9 +60,7 @@ cmd_replay(int argc, char **argv)
 		}
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape replay: expected one replay file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("replay", "expected one replay file");
 	}
 	if (!(isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))) {
 		fprintf(stderr, "drape replay: not a terminal: a replay plays only in the terminal "

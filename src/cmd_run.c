@@ -219,9 +219,7 @@ parse_options(int argc, char **argv, struct run_opts *o)
 		return EXIT_USAGE;
 	if (o->resume == NULL) {
 		if (optind != argc - 1) {
-			fprintf(stderr, "drape run: expected one scene file\n");
-			usage(stderr);
-			return EXIT_USAGE;
+			return cmd_usage_error("run", "expected one scene file");
 		}
 		o->scene = argv[optind];
 	} else if (optind != argc) {

@@ -56,6 +56,8 @@ struct snapshot {
 	double zoom;		/* 0: 1 */
 	bool centred;
 	vec3 centre;		/* of the view, when centred */
+	bool frame_scene;	/* --frame scene: the whole scene as it starts, as the
+				 * TUI opens; else the cloth in the frames drawn */
 	int w, h;		/* characters, or a frame's pixels */
 	bool size_given;
 	const char *size_arg;
@@ -387,17 +389,22 @@ go_to(struct snapshot *sn, const struct target *tg)
 	}
 }
 
-/* The camera as the TUI frames a run: at its start, so that pictures of
- * successive steps line up. */
+/* The camera: by default on the cloth in the frames drawn (its box over
+ * all of them, lo to hi: a filmstrip's frames line up); with --frame
+ * scene as the TUI frames a run, at its start, so that separate pictures
+ * of successive steps line up too. */
 static void
-frame_camera(const struct snapshot *sn, struct camera *cam)
+frame_camera(const struct snapshot *sn, vec3 lo, vec3 hi, struct camera *cam)
 {
 	struct source_state s;
 	vec3 target;
 	double radius;
 
 	sn->src.state(sn->src.ctx, &s);
-	view_frame(s.sc, s.cl->x0, s.cl->n, &target, &radius);
+	if (sn->frame_scene)
+		view_frame(s.sc, s.cl->x0, s.cl->n, &target, &radius);
+	else
+		view_frame_cloth(s.sc, s.cl->x0, s.cl->n, lo, hi, &target, &radius);
 	camera_preset(cam, (enum view_preset)sn->preset, sn->centred ? sn->centre : target, radius);
 	cam->perspective = sn->perspective;
 	if (sn->zoom > 0)
@@ -411,13 +418,15 @@ snapshot_text(struct snapshot *sn)
 	struct source_state s;
 	struct camera cam;
 	const struct contact_event *ev;
+	vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
 	size_t nev;
 	int rc;
 
-	frame_camera(sn, &cam);
 	if (sn->ntargets > 0 && (rc = go_to(sn, &sn->targets[0])) != EXIT_OK)
 		return rc;
 	sn->src.state(sn->src.ctx, &s);
+	view_cloth_box(s.x, s.cl->n, &lo, &hi);
+	frame_camera(sn, lo, hi, &cam);
 	ev = sn->src.events(sn->src.ctx, &nev);
 	if (s.step == 0) {
 		ev = NULL;
@@ -492,6 +501,45 @@ free_shots(struct shot *sh, size_t n)
 }
 
 /* The picture of every target; an exit status. */
+/* The largest magnitude of strain colouring c over every intact frame of
+ * the replay, so that its pictures share one scale by default (each set
+ * its own from the frames it drew: two pictures of one run could not be
+ * compared); 0 when none could be read, -1 out of memory. */
+static double
+replay_field_max(struct snapshot *sn, const struct cloth *cl, enum colouring c)
+{
+	const struct replay *rp = &sn->sr.rp;
+	size_t n3 = 3 * (size_t)cl->n, i, k, j;
+	double *x = malloc((n3 > 0 ? n3 : 1) * sizeof *x), m = 0;
+	double *field = malloc((cl->n > 0 ? (size_t)cl->n : 1) * sizeof *field);
+	struct drape_err err;
+
+	if (x == NULL || field == NULL) {
+		free(x);
+		free(field);
+		return -1;
+	}
+	for (i = 0; i < rp->nchunks && m >= 0; i++) {
+		struct replay_frames fr;
+
+		/* a damaged chunk is passed over, as the viewer does */
+		if (!replay_is_frames(rp->chunk[i].kind) || replay_read_frames(rp, i, &fr, &err) != 0)
+			continue;
+		for (k = 0; k < fr.count && m >= 0; k++) {
+			for (j = 0; j < n3; j++)
+				x[j] = fr.x[k * n3 + j];
+			if (colouring_field(c, cl, x, NULL, 0, field) != 0)
+				m = -1;
+			for (j = 0; m >= 0 && j < (size_t)cl->n; j++)
+				m = fmax(m, fabs(field[j]));
+		}
+		replay_frames_free(&fr);
+	}
+	free(x);
+	free(field);
+	return m;
+}
+
 static int
 snapshot_png(struct snapshot *sn)
 {
@@ -502,6 +550,7 @@ snapshot_png(struct snapshot *sn)
 	struct picture_opts po;
 	struct drape_err err;
 	unsigned char *rgb = NULL;
+	vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
 	size_t k, n3;
 	double m = 0;
 	int rc = EXIT_OK, w, h, p;
@@ -517,7 +566,6 @@ snapshot_png(struct snapshot *sn)
 	if (sn->ntargets == 0 && (rc = add_target(sn, false, 0, 0)) != EXIT_OK)
 		return rc;
 	qsort(sn->targets, sn->ntargets, sizeof *sn->targets, target_order);
-	frame_camera(sn, &cam);
 	sn->src.state(sn->src.ctx, &s);
 	n3 = 3 * (size_t)s.cl->n;
 	if ((sh = calloc(sn->ntargets, sizeof *sh)) == NULL) {
@@ -544,9 +592,11 @@ snapshot_png(struct snapshot *sn)
 			goto done;
 		}
 		memcpy(sh[k].x, s.x, n3 * sizeof *sh[k].x);
+		view_cloth_box(s.x, s.cl->n, &lo, &hi);
 		for (p = 0; p < s.cl->n; p++)
 			m = fmax(m, fabs(sh[k].field[p]));
 	}
+	frame_camera(sn, lo, hi, &cam);
 	if ((fr = calloc(sn->ntargets, sizeof *fr)) == NULL) {
 		fprintf(stderr, "drape snapshot: out of memory\n");
 		rc = EXIT_RUNTIME;
@@ -555,12 +605,38 @@ snapshot_png(struct snapshot *sn)
 	for (k = 0; k < sn->ntargets; k++)
 		fr[k] = (struct picture_frame){ sh[k].t, sh[k].x,
 			sn->colouring == COLOUR_SHADE ? NULL : sh[k].field };
+	memset(&po, 0, sizeof po);
 	po.w = sn->w;
 	po.h = sn->h;
 	po.colouring = sn->colouring;
-	po.range = sn->range > 0 ? sn->range : colouring_range(sn->colouring, m);
+	/* a replay's default scale is its whole run's, a scene's the frames
+	 * drawn (it is run only so far) */
+	if (sn->range <= 0 && sn->replay && colouring_is_strain(sn->colouring)) {
+		double all = replay_field_max(sn, s.cl, sn->colouring);
+
+		if (all < 0) {
+			fprintf(stderr, "drape snapshot: out of memory\n");
+			rc = EXIT_RUNTIME;
+			goto done;
+		}
+		m = fmax(m, all);
+	}
+	/* --range is in the legend's unit: percent, or degrees of shear (it
+	 * was taken as a bare strain: '--range 20' drew a scale to 2000 %) */
+	po.range = sn->range > 0 ? sn->range * colouring_unit(sn->colouring) :
+	    colouring_range(sn->colouring, m);
 	po.title = s.sc->name;
 	po.supersample = PICTURE_SUPERSAMPLE;
+	/* --size is the whole picture's: the band under the frames within it */
+	if (sn->size_given && picture_fit(s.sc, &cam, &po, sn->ntargets, sn->w, sn->h,
+	    PICTURE_MIN_SIDE) != 0) {
+		fprintf(stderr, "drape snapshot: --size %s: the band under the frames takes %d "
+		    "rows of the %d, leaving frames of %d x %d pixels; expected at least %d x %d: "
+		    "a larger --size\n", sn->size_arg, sn->h - po.h, sn->h, po.w, po.h,
+		    PICTURE_MIN_SIDE, PICTURE_MIN_SIDE);
+		rc = EXIT_USAGE;
+		goto done;
+	}
 	if (picture_strip(s.sc, s.cl, &cam, fr, sn->ntargets, &po, &rgb, &w, &h, &err) != 0 ||
 	    png_write(sn->png, rgb, w, h, &err) != 0) {
 		fprintf(stderr, "drape snapshot: %s\n", err.msg);
@@ -603,9 +679,8 @@ add_frames(struct snapshot *sn)
 	return EXIT_OK;
 }
 
-/* One option's value into sn; an exit status. */
-/* WxH, each from 1 to PICTURE_MAX_SIDE (the text's bound is checked later);
- * 0, or -1. */
+/* WxH, each from 1 to PICTURE_MAX_WIDTH (each kind's bounds are checked
+ * later); 0, or -1. */
 static int
 parse_size(const char *arg, int *w, int *h)
 {
@@ -617,14 +692,15 @@ parse_size(const char *arg, int *w, int *h)
 		return -1;
 	memcpy(side, arg, (size_t)(x - arg));
 	side[x - arg] = '\0';
-	if (cmd_parse_long(side, 1, PICTURE_MAX_SIDE, &lw) != 0 ||
-	    cmd_parse_long(x + 1, 1, PICTURE_MAX_SIDE, &lh) != 0)
+	if (cmd_parse_long(side, 1, PICTURE_MAX_WIDTH, &lw) != 0 ||
+	    cmd_parse_long(x + 1, 1, PICTURE_MAX_WIDTH, &lh) != 0)
 		return -1;
 	*w = (int)lw;
 	*h = (int)lh;
 	return 0;
 }
 
+/* One option's value into sn; an exit status. */
 static int
 take_option(struct snapshot *sn, int c, const char *arg)
 {
@@ -668,6 +744,11 @@ take_option(struct snapshot *sn, int c, const char *arg)
 		return EXIT_OK;
 	case 'C':
 		return parse_centre(sn, arg);
+	case 'f':
+		if (strcmp(arg, "cloth") != 0 && strcmp(arg, "scene") != 0)
+			return bad("--frame", arg, "cloth or scene");
+		sn->frame_scene = strcmp(arg, "scene") == 0;
+		return EXIT_OK;
 	case 'o':
 		if (*arg == '\0')
 			return bad("--png", arg, "a file name");
@@ -731,18 +812,27 @@ check_options(struct snapshot *sn)
 	}
 	if (sn->size_given && (sn->png == NULL ?
 	    sn->w > SNAPSHOT_MAX_SIDE || sn->h > SNAPSHOT_MAX_SIDE :
-	    sn->w < PICTURE_MIN_SIDE || sn->h < PICTURE_MIN_SIDE))
+	    sn->w < PICTURE_MIN_SIDE || sn->h < PICTURE_MIN_SIDE || sn->h > PICTURE_MAX_SIDE))
 		return bad("--size", sn->size_arg, sn->png == NULL ?
 		    "WxH, each from 1 to 1000 characters, as 80x24" :
-		    "WxH, each from 16 to 4096 pixels, as 480x360");
+		    "WxH, the whole picture's, from 16 to 16384 pixels wide and from 16 to 4096 "
+		    "high, as 640x480");
 	if (!sn->size_given) {
 		sn->w = sn->png != NULL ? PICTURE_W : 80;
 		sn->h = sn->png != NULL ? PICTURE_H : 24;
 	}
 	if (nframes < 1)
 		nframes = 1;
-	if (sn->png != NULL && (nframes > PICTURE_MAX_FRAMES ||
-	    nframes * (sn->w + PICTURE_GAP) > PICTURE_MAX_WIDTH)) {
+	/* a given size is the whole picture's: its frames share the width */
+	if (sn->png != NULL && sn->size_given && nframes <= PICTURE_MAX_FRAMES &&
+	    (sn->w - (nframes - 1) * PICTURE_GAP) / nframes < PICTURE_MIN_SIDE) {
+		fprintf(stderr, "drape snapshot: --size %s: %ld frames side by side leave each "
+		    "under %d pixels wide: fewer frames, or a wider --size\n", sn->size_arg,
+		    nframes, PICTURE_MIN_SIDE);
+		return EXIT_USAGE;
+	}
+	if (sn->png != NULL && (nframes > PICTURE_MAX_FRAMES || (!sn->size_given &&
+	    nframes * (sn->w + PICTURE_GAP) > PICTURE_MAX_WIDTH))) {
 		fprintf(stderr, "drape snapshot: %ld frames of %d pixels are wider than %d "
 		    "pixels: fewer frames, or a smaller --size\n", nframes, sn->w,
 		    PICTURE_MAX_WIDTH);
@@ -763,6 +853,7 @@ parse_options(int argc, char **argv, struct snapshot *sn)
 		{ "perspective", no_argument, NULL, 'p' },
 		{ "zoom", required_argument, NULL, 'Z' },
 		{ "centre", required_argument, NULL, 'C' },
+		{ "frame", required_argument, NULL, 'f' },
 		{ "center", required_argument, NULL, 'C' },
 		{ "png", required_argument, NULL, 'o' },
 		{ "strip", required_argument, NULL, 'S' },
@@ -791,9 +882,7 @@ parse_options(int argc, char **argv, struct snapshot *sn)
 			return rc;
 	}
 	if (optind != argc - 1) {
-		fprintf(stderr, "drape snapshot: expected one scene file\n");
-		usage(stderr);
-		return EXIT_USAGE;
+		return cmd_usage_error("snapshot", "expected one scene or replay file");
 	}
 	sn->path = argv[optind];
 	return check_options(sn);

@@ -2,6 +2,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,6 +49,66 @@ cmd_step_failed(const char *cmd, const char *path, const struct step_failure *f)
 	fprintf(stderr, "drape%s%s: %s: %s\n", cmd != NULL ? " " : "", cmd != NULL ? cmd : "", path,
 	    msg);
 	return f->status == STEP_BLOWUP ? EXIT_BLOWUP : EXIT_RUNTIME;
+}
+
+int
+cmd_usage_error(const char *cmd, const char *fmt, ...)
+{
+	va_list ap;
+
+	fprintf(stderr, "drape%s%s: ", cmd != NULL ? " " : "", cmd != NULL ? cmd : "");
+	va_start(ap, fmt);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
+	fputs("; see drape --help\n", stderr);
+	return EXIT_USAGE;
+}
+
+/* Edits from a to b: insertions, deletions, substitutions and swaps of
+ * two neighbours (the optimal string alignment distance); past 3, 3. */
+static int
+edits(const char *a, const char *b)
+{
+	enum { MAX = 24 };
+	int d[MAX + 1][MAX + 1], i, j;
+	int la = (int)strlen(a), lb = (int)strlen(b);
+
+	if (la > MAX || lb > MAX)
+		return 3;
+	for (i = 0; i <= la; i++)
+		d[i][0] = i;
+	for (j = 0; j <= lb; j++)
+		d[0][j] = j;
+	for (i = 1; i <= la; i++)
+		for (j = 1; j <= lb; j++) {
+			int c = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+
+			if (d[i - 1][j] + 1 < c)
+				c = d[i - 1][j] + 1;
+			if (d[i][j - 1] + 1 < c)
+				c = d[i][j - 1] + 1;
+			if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+			    d[i - 2][j - 2] + 1 < c)
+				c = d[i - 2][j - 2] + 1;
+			d[i][j] = c;
+		}
+	return d[la][lb] < 3 ? d[la][lb] : 3;
+}
+
+const char *
+cmd_nearest(const char *name, const char *const *names, size_t n)
+{
+	const char *best = NULL;
+	int best_d = 3, d;
+	size_t i;
+
+	for (i = 0; i < n; i++)
+		/* two slips in a word of 6 letters or more, one in a shorter */
+		if ((d = edits(name, names[i])) < best_d && d <= (strlen(names[i]) >= 6 ? 2 : 1)) {
+			best = names[i];
+			best_d = d;
+		}
+	return best;
 }
 
 int

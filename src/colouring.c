@@ -154,11 +154,17 @@ colouring_field(enum colouring c, const struct cloth *cl, const double *x,
 }
 
 double
+colouring_unit(enum colouring c)
+{
+	return c == COLOUR_SHEAR ? V3_PI / 180 : 0.01;
+}
+
+double
 colouring_range(enum colouring c, double m)
 {
 	static const double steps[] = { 1, 2, 5 };
 	/* the unit the legend writes: degrees, or percent */
-	double unit = c == COLOUR_SHEAR ? V3_PI / 180 : 0.01, p;
+	double unit = colouring_unit(c), p;
 	int k;
 
 	m /= unit;

@@ -48,6 +48,10 @@ bool colouring_is_signed(enum colouring c);
 int colouring_field(enum colouring c, const struct cloth *cl, const double *x,
     const struct contact_event *ev, size_t nev, double *out);
 
+/* The unit a strain scale is given and labelled in (--range, the legend):
+ * a percent of strain, or a degree of shear, in c's own values. */
+double colouring_unit(enum colouring c);
+
 /* The range of c's scale that holds magnitudes up to m: 1, 2 or 5 times a
  * power of ten at or above m (in %, or for shear in degrees); 1 % (1
  * degree) when m is under 0.01 % (0.01 degree: rounding, not strain) or

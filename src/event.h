@@ -20,8 +20,20 @@ enum contact_type {
 
 extern const char *const contact_type_name[CONTACT_NTYPES];
 
+/* A step's number as drape shows it. A step record's and an event's step k
+ * (in memory and in replay files) is the step from state k to state k + 1;
+ * it is shown as k + 1, the state it led to, which the status line then
+ * shows ("step 37"): shown as k, an event appeared one step before its
+ * own in the inspector, and a replay's "step 36" listed none of the
+ * events drape events gave for step 36. */
+static inline long
+step_shown(long step)
+{
+	return step + 1;
+}
+
 struct contact_event {
-	long step;
+	long step;		/* from 0: shown as step_shown(step) */
 	int node;		/* the corrected cloth node */
 	enum contact_type type;
 	int other;		/* triangle or edge (by type) of the geometry, or -1 */

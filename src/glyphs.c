@@ -117,9 +117,13 @@ glyphs_convert(struct glyphs_grid *g)
 					if (im->kind[at] == CELL_EMPTY || !(im->lum[at] > t))
 						continue;
 					/* the floor's grid dotted, lighter than what
-					 * stands on it */
+					 * stands on it; the obstacles hatched, every
+					 * other row of pixels, so that without colour
+					 * the cloth on a box stands out from it */
 					if (im->kind[at] == CELL_FLOOR &&
 					    ((cx * g->px + i + cy * g->py + j) & 1))
+						continue;
+					if (im->kind[at] == CELL_SOLID && ((cy * g->py + j) & 1))
 						continue;
 					bits |= g->mode == GLYPHS_BRAILLE ? dot[j][i] : 1u << j;
 					if (rank(im->kind[at]) > rank(best)) {

@@ -123,11 +123,26 @@ legend(unsigned char *rgb, int w, int h, int x, int y, const struct picture_opts
 	}
 }
 
+/* The frames and their gaps, side by side. */
+static int
+frames_width(const struct picture_opts *o, size_t nfr)
+{
+	return (int)nfr * o->w + (int)(nfr > 0 ? nfr - 1 : 0) * PICTURE_GAP;
+}
+
+static int
+picture_width(const struct picture_opts *o, size_t nfr)
+{
+	int w = frames_width(o, nfr);
+
+	return o->width > w ? o->width : w;
+}
+
 void
 picture_band(const struct scene *sc, const struct camera *cam, const struct picture_opts *o,
     size_t nfr, struct picture_band *b)
 {
-	int s = font_scale(o), w = (int)nfr * o->w + (int)(nfr > 0 ? nfr - 1 : 0) * PICTURE_GAP;
+	int s = font_scale(o), w = picture_width(o, nfr);
 	char name[96];
 
 	band_name(sc, cam, o, name, sizeof name);
@@ -157,8 +172,22 @@ picture_size(const struct scene *sc, const struct camera *cam, const struct pict
 	struct picture_band b;
 
 	picture_band(sc, cam, o, nfr, &b);
-	*w = (int)nfr * o->w + (int)(nfr > 0 ? nfr - 1 : 0) * PICTURE_GAP;
+	*w = picture_width(o, nfr);
 	*h = o->h + b.h;
+}
+
+int
+picture_fit(const struct scene *sc, const struct camera *cam, struct picture_opts *o,
+    size_t nfr, int w, int h, int min_side)
+{
+	struct picture_band b;
+	int k = nfr > 0 ? (int)nfr : 1;
+
+	o->width = w;
+	o->w = (w - (k - 1) * PICTURE_GAP) / k;	/* what is left over: margins */
+	picture_band(sc, cam, o, nfr, &b);	/* its height follows o->w's font */
+	o->h = h - b.h;
+	return o->w >= min_side && o->h >= min_side ? 0 : -1;
 }
 
 /* The band under the frames, at row y0. */
@@ -211,7 +240,7 @@ picture_strip(const struct scene *sc, const struct cloth *cl, const struct camer
 {
 	struct render im;
 	struct paint_opts po = { o->colouring, o->range, 4.0 * o->supersample, false };
-	int ss = o->supersample < 1 ? 1 : o->supersample, s = font_scale(o), y, fx, decimals;
+	int ss = o->supersample < 1 ? 1 : o->supersample, s = font_scale(o), y, fx, decimals, x0;
 	unsigned char *tile = NULL, *out;
 	double *times;
 	size_t f;
@@ -226,6 +255,7 @@ picture_strip(const struct scene *sc, const struct cloth *cl, const struct camer
 	    render_resize(&im, o->w * ss, o->h * ss, 1) != 0)
 		goto oom;
 	fill(out, *w, *h, 0, 0, *w, *h, PAINT_BACKGROUND);
+	x0 = (*w - frames_width(o, nfr)) / 2;	/* a fitted picture's margins */
 	for (f = 0; f < nfr; f++)
 		times[f] = fr[f].t;
 	decimals = picture_time_decimals(times, nfr);
@@ -235,7 +265,7 @@ picture_strip(const struct scene *sc, const struct cloth *cl, const struct camer
 		if (paint_scene(&im, cam, sc, cl, fr[f].x, fr[f].field, &po) != 0)
 			goto oom;
 		render_downsample(im.rgb, im.w, im.h, ss, tile);
-		fx = (int)f * (o->w + PICTURE_GAP);
+		fx = x0 + (int)f * (o->w + PICTURE_GAP);
 		for (y = 0; y < o->h; y++)
 			memcpy(out + 3 * ((size_t)y * (size_t)*w + (size_t)fx),
 			    tile + 3 * (size_t)y * (size_t)o->w, 3 * (size_t)o->w);

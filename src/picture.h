@@ -27,6 +27,8 @@ struct picture_opts {
 	double range;		/* of a strain scale, > 0 */
 	const char *title;	/* the scene's name, or NULL */
 	int supersample;	/* rendered this many times larger, then averaged */
+	int width;		/* of the picture, when wider than its frames and
+				 * gaps (picture_fit): the frames centred; 0 none */
 };
 
 /* The band under nfr frames: the name (and the floor grid's spacing) at
@@ -47,6 +49,14 @@ void picture_band(const struct scene *sc, const struct camera *cam,
 /* The picture's size for nfr frames. */
 void picture_size(const struct scene *sc, const struct camera *cam,
     const struct picture_opts *o, size_t nfr, int *w, int *h);
+
+/* The frames' size (o->w, o->h, and o->width) that makes the picture of
+ * nfr frames exactly w x h pixels, the band under them included (o's
+ * colouring, range and title as they will be drawn). Returns 0, or -1
+ * when a frame would be under min_side pixels either way (o->w and o->h
+ * then say how small). */
+int picture_fit(const struct scene *sc, const struct camera *cam, struct picture_opts *o,
+    size_t nfr, int w, int h, int min_side);
 
 /* The decimals of the frames' time labels (t, n of them, in time order):
  * enough to tell them apart, and more while a time differs from its label

@@ -124,12 +124,14 @@ raster_project(const struct raster *r, const struct camera *cam, vec3 p, double 
 }
 
 /* The ramp character of a surface with view-space normal n: lit from the
- * viewer's upper left, so that what faces the viewer is never black. */
+ * viewer's upper left, so that what faces the viewer is never black; the
+ * cloth's ramp, or the obstacles'. */
 static char
-shade(vec3 n)
+shade(vec3 n, enum cell_kind kind)
 {
-	static const char ramp[] = RASTER_RAMP;
-	const int len = (int)sizeof ramp - 1;
+	static const char cloth[] = RASTER_RAMP, solid[] = RASTER_SOLID_RAMP;
+	const char *ramp = kind == CELL_SOLID ? solid : cloth;
+	const int len = (int)strlen(ramp);
 	vec3 light = RASTER_LIGHT;
 	double len_n = v3_len(n), lit;
 	int k;
@@ -178,7 +180,7 @@ raster_triangle(struct raster *r, const struct camera *cam, vec3 a, vec3 b, vec3
 	double x[3], y[3], z[3], area, longest, lo_x, hi_x, lo_y, hi_y;
 	vec3 n = v3_cross(v3_sub(camera_view(cam, b), camera_view(cam, a)),
 	    v3_sub(camera_view(cam, c), camera_view(cam, a)));
-	char ch = kind == CELL_FLOOR ? ' ' : shade(n);
+	char ch = kind == CELL_FLOOR ? ' ' : shade(n, kind);
 	int c0, c1, r0, r1, i, j;
 
 	if (r->w < 1 || !raster_project(r, cam, a, &x[0], &y[0], &z[0]) ||

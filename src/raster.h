@@ -15,7 +15,10 @@
 #include "vec3.h"
 
 #define RASTER_ASPECT 2.0	/* cell height over cell width */
-#define RASTER_RAMP ".:-=+*#%@"	/* dim to bright */
+#define RASTER_RAMP ".:-=+*#%@"	/* dim to bright: the cloth */
+/* The obstacles' own characters, none of the cloth's nor the floor's '.',
+ * so that without colour the cloth and a box it lies on do not merge */
+#define RASTER_SOLID_RAMP "',;!|lIH"
 
 enum view_preset { VIEW_FRONT, VIEW_SIDE, VIEW_TOP, VIEW_ISO, VIEW_NPRESETS };
 

@@ -151,7 +151,7 @@ recompute(struct replay_events *re, size_t i, struct replay_steps *ss, struct dr
 		stepper_report(re->st, &r);
 		if (!replay_step_same(&s, &ss->s[j])) {
 			snprintf(what, sizeof what, "step %ld recomputed does not give the recorded "
-			    "statistics", ss->s[j].step);
+			    "statistics", step_shown(ss->s[j].step));
 			mismatch(re, err, what);
 			goto fail;
 		}
@@ -209,8 +209,8 @@ replay_events_read(struct replay_events *re, size_t i, struct replay_steps *ss,
 		if (strncmp(msg, re->file, n) == 0 && strncmp(msg + n, ": ", 2) == 0)
 			msg += n + 2;
 		snprintf(re->why, sizeof re->why, "%s", msg);
-		err_set(err, "the events of steps %lu to %lu are unavailable: %s",
-		    (unsigned long)c->first_step, (unsigned long)(c->first_step + c->count - 1),
+		err_set(err, "the events of steps %ld to %ld are unavailable: %s",
+		    step_shown((long)c->first_step), step_shown((long)(c->first_step + c->count - 1)),
 		    msg);
 		return REPLAY_EVENTS_UNAVAILABLE;
 	}

@@ -12,7 +12,7 @@ replay_scene(const struct replay *rp, const char *file, double until, struct sce
 		err_set(err, "%s: unknown integrator %d", file, m->integrator);
 		return -1;
 	}
-	if (scene_parse(sc, m->path, m->text, &perr) != 0) {
+	if (scene_parse_recorded(sc, m->path, m->text, &perr) != 0) {
 		err_set(err, "%s: its scene: %s", file, perr.msg);
 		return -1;
 	}

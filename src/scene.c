@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cloth.h"
 #include "ini.h"
 #include "override.h"
 #include "replay.h"
@@ -35,10 +36,14 @@ struct pctx {
 	struct drape_err *err;
 	struct scene *sc;
 	const struct override_text *ov;	/* the --set overrides, or NULL */
+	/* what a number without its unit means: refused in a scene (a bare
+	 * weight of 150 was 150 kg/m2), SI in one a replay recorded */
+	enum units_bare bare;
 	/* raw selectors, resolved once [cloth] has given the grid size */
 	struct raw_sel *raw;
 	size_t nraw, rawcap;
 	int cell_line;		/* of [collision] cell, 0: auto */
+	int origin_line;	/* of [cloth] origin, else of [cloth] */
 };
 
 /* A node selector kept as text until the grid size is known. Its owner is
@@ -191,6 +196,51 @@ enum bound { ANY, POSITIVE, NONNEGATIVE };
  * "%s%s%s" */
 #define REASON(why) (why)[0] != '\0' ? " (" : "", (why), (why)[0] != '\0' ? ")" : ""
 
+/* Examples for the keys whose dimension's own would read oddly. */
+static const struct {
+	const char *key, *example;
+} key_examples[] = {
+	{ "output_rate", "50 Hz" }, { "dt", "0.1 ms" }, { "spring_damping", "1 ms" },
+	{ "thickness", "0.55 mm" }, { "origin", "-0.12 0.15 -0.12 m" },
+};
+
+/* A key's value with its unit, for a message. */
+static const char *
+example_of(const char *key, enum unit_dim dim, int n)
+{
+	size_t i;
+
+	for (i = 0; i < sizeof key_examples / sizeof key_examples[0]; i++)
+		if (strcmp(key_examples[i].key, key) == 0)
+			return key_examples[i].example;
+	return units_example(dim, n);
+}
+
+/* "a length (m, cm, mm, um)", or "3 numbers and the unit of a length
+ * (...)", or "2 numbers" */
+static void
+expected_numbers(char *buf, size_t len, enum unit_dim dim, int n)
+{
+	if (n == 1)
+		snprintf(buf, len, "%s", units_describe(dim));
+	else if (dim == DIM_NONE)
+		snprintf(buf, len, "%d numbers", n);
+	else
+		snprintf(buf, len, "%d numbers and the unit of %s", n, units_describe(dim));
+}
+
+/* Numbers given without the unit their key needs. */
+static int
+no_unit(struct pctx *c, const struct ini_entry *e, enum unit_dim dim, int n)
+{
+	char what[160];
+
+	expected_numbers(what, sizeof what, dim, n);
+	return fail(c, e->line, "%s: expected %s%s, such as '%s = %s'; got '%s', with no unit",
+	    e->key, what, n == 1 ? " with its unit" : "", e->key, example_of(e->key, dim, n),
+	    e->value);
+}
+
 /*
  * Reads n numbers of dimension dim. Returns 1 if the key was there, 0 if it
  * is absent and optional, -1 on error (absent and required, or malformed).
@@ -200,14 +250,17 @@ get_numbers(struct pctx *c, const struct group *g, const char *key, enum unit_di
     enum bound bound, int required, double *out)
 {
 	const struct ini_entry *e = find(g, key);
-	char why[200];
-	int k;
+	char why[200], what[160];
+	int k, rc;
 
+	expected_numbers(what, sizeof what, dim, n);
 	if (e == NULL)
-		return required ? missing(c, g, key, units_describe(dim)) : 0;
-	if (units_parse(e->value, dim, out, n, why, sizeof why) != 0)
-		return fail(c, e->line, "%s: expected %s%s, got '%s'%s%s%s", key,
-		    n > 1 ? "numbers for " : "", units_describe(dim), e->value, REASON(why));
+		return required ? missing(c, g, key, what) : 0;
+	if ((rc = units_parse_as(e->value, dim, c->bare, out, n, why, sizeof why)) == UNITS_NO_UNIT)
+		return no_unit(c, e, dim, n);
+	if (rc != 0)
+		return fail(c, e->line, "%s: expected %s, got '%s'%s%s%s", key, what, e->value,
+		    REASON(why));
 	for (k = 0; k < n; k++) {
 		if (dim == DIM_LENGTH && !(fabs(out[k]) <= SCENE_MAX_COORD))
 			return fail(c, e->line, "%s: expected %s of at most %g m either way, got '%s'",
@@ -254,10 +307,13 @@ read_simulation(struct pctx *c, const struct group *g)
 		sc->dt_line = e->line;
 	if (e != NULL && strcmp(e->value, "auto") != 0) {
 		char why[200];
+		int rc;
 
 		why[0] = '\0';
-		if (units_parse(e->value, DIM_TIME, &sc->dt, 1, why, sizeof why) != 0 ||
-		    !(sc->dt > 0))
+		if ((rc = units_parse_as(e->value, DIM_TIME, c->bare, &sc->dt, 1, why,
+		    sizeof why)) == UNITS_NO_UNIT)
+			return no_unit(c, e, DIM_TIME, 1);
+		if (rc != 0 || !(sc->dt > 0))
 			return fail(c, e->line, "dt: expected 'auto' or %s greater than 0, got "
 			    "'%s'%s%s%s", units_describe(DIM_TIME), e->value, REASON(why));
 		if (scene_steps(sc->duration, sc->dt) > SCENE_MAX_STEPS)
@@ -276,14 +332,18 @@ read_simulation(struct pctx *c, const struct group *g)
 		return -1;
 	if ((e = find(g, "gravity")) != NULL) {
 		char why[200];
+		int one, three = -1;
 
 		/* One value is a magnitude pointing down -y; three are a vector. */
-		if (units_parse(e->value, DIM_ACCEL, gv, 1, why, sizeof why) == 0) {
+		if ((one = units_parse_as(e->value, DIM_ACCEL, c->bare, gv, 1, why, sizeof why)) == 0) {
 			sc->gravity[0] = 0;
 			sc->gravity[1] = -gv[0];
 			sc->gravity[2] = 0;
-		} else if (units_parse(e->value, DIM_ACCEL, gv, 3, why, sizeof why) == 0) {
+		} else if ((three = units_parse_as(e->value, DIM_ACCEL, c->bare, gv, 3, why,
+		    sizeof why)) == 0) {
 			memcpy(sc->gravity, gv, sizeof gv);
+		} else if (one == UNITS_NO_UNIT || three == UNITS_NO_UNIT) {
+			return no_unit(c, e, DIM_ACCEL, one == UNITS_NO_UNIT ? 1 : 3);
 		} else {
 			return fail(c, e->line, "gravity: expected a magnitude (pointing down -y) or "
 			    "a vector gx gy gz, as %s, got '%s'", units_describe(DIM_ACCEL), e->value);
@@ -390,11 +450,16 @@ read_cloth(struct pctx *c, const struct group *g)
 	struct material *m = &sc->mat;
 	const struct ini_entry *e;
 	double nodes[2];
+	char why[200];
 	int dir;
 
-	if (get_numbers(c, g, "nodes", DIM_NONE, 2, ANY, 1, nodes) < 0)
-		return -1;
-	e = find(g, "nodes");
+	if ((e = find(g, "nodes")) == NULL)
+		return missing(c, g, "nodes", "the nodes along the warp and the weft, such as "
+		    "'nodes = 25 25'");
+	if (units_parse(e->value, DIM_NONE, nodes, 2, why, sizeof why) != 0)
+		return fail(c, e->line, "nodes: expected two whole numbers, the nodes along the "
+		    "warp and along the weft, such as 'nodes = 25 25', got '%s'%s%s%s", e->value,
+		    REASON(why));
 	if (nodes[0] != floor(nodes[0]) || nodes[1] != floor(nodes[1]) || nodes[0] < 1 ||
 	    nodes[1] < 1 || nodes[0] > MAX_GRID || nodes[1] > MAX_GRID ||
 	    nodes[0] * nodes[1] > MAX_NODES)
@@ -422,6 +487,7 @@ read_cloth(struct pctx *c, const struct group *g)
 		return -1;
 	if ((e = find(g, "orientation")) != NULL && read_orientation(c, e) != 0)
 		return -1;
+	c->origin_line = (e = find(g, "origin")) != NULL ? e->line : g->line;
 	for (dir = 0; dir < 3; dir++) {
 		double far = sc->origin[dir] + sc->spacing * ((sc->nu - 1) * sc->warp_axis[dir] +
 		    (sc->nv - 1) * sc->weft_axis[dir]);
@@ -594,6 +660,44 @@ read_pin(struct pctx *c, const struct group *g)
 	return read_nodes(c, g, 0, c->sc->nmotions - 1);
 }
 
+/*
+ * A path's point "T DX DY DZ": the time with its unit, then the
+ * displacement's three numbers with theirs ("0.3 s -0.1 0 0 m"). The time's
+ * unit is the word after its number, so that a recorded scene's bare
+ * "0.3 -0.1 0 0" still reads. 0, -1, or UNITS_NO_UNIT.
+ */
+static int
+parse_path_point(const char *point, enum units_bare bare, double p[4], char *why, size_t len)
+{
+	const char *s = point, *unit_end;
+	char time[64];
+	char *end;
+	int rc;
+
+	if (len > 0)
+		why[0] = '\0';
+	while (isspace((unsigned char)*s))
+		s++;
+	(void)strtod(s, &end);
+	if (end == s)
+		return -1;
+	unit_end = end;
+	while (isspace((unsigned char)*unit_end))
+		unit_end++;
+	if (isalpha((unsigned char)*unit_end) || *unit_end == '/')
+		while (*unit_end != '\0' && !isspace((unsigned char)*unit_end))
+			unit_end++;
+	else
+		unit_end = end;
+	if ((size_t)(unit_end - s) >= sizeof time)
+		return -1;
+	memcpy(time, s, (size_t)(unit_end - s));
+	time[unit_end - s] = '\0';
+	if ((rc = units_parse_as(time, DIM_TIME, bare, p, 1, why, len)) != 0)
+		return rc;
+	return units_parse_as(unit_end, DIM_LENGTH, bare, p + 1, 3, why, len);
+}
+
 static int
 read_path(struct pctx *c, const struct ini_entry *e, struct scene_motion *m)
 {
@@ -605,6 +709,7 @@ read_path(struct pctx *c, const struct ini_entry *e, struct scene_motion *m)
 		size_t len = comma ? (size_t)(comma - s) : strlen(s);
 		char point[256], why[200];
 		double *p;
+		int rc;
 
 		if (len >= sizeof point)
 			return fail(c, e->line, "path: point too long");
@@ -614,9 +719,13 @@ read_path(struct pctx *c, const struct ini_entry *e, struct scene_motion *m)
 			return fail(c, e->line, "out of memory");
 		m->path = p;
 		p += 4 * m->npath;
-		if (units_parse(point, DIM_NONE, p, 4, why, sizeof why) != 0)
-			return fail(c, e->line, "path: expected points 't dx dy dz' in s and m, "
-			    "separated by commas, got '%s'", point);
+		if ((rc = parse_path_point(point, c->bare, p, why, sizeof why)) != 0)
+			return fail(c, e->line, "path: expected points 'T DX DY DZ', a time and a "
+			    "displacement each with its unit, separated by commas, such as "
+			    "'path = 0.3 s -0.1 0 0 m, 1 s -0.1 0.05 0 m'; got '%s'%s%s%s", point,
+			    rc == UNITS_NO_UNIT ? " (no unit)" : why[0] != '\0' ? " (" : "",
+			    rc == UNITS_NO_UNIT ? "" : why, rc != UNITS_NO_UNIT && why[0] != '\0' ?
+			    ")" : "");
 		if (!(p[0] > prev))
 			return fail(c, e->line, "path: expected times after 0 that increase, got "
 			    "%g after %g", p[0], prev);
@@ -967,6 +1076,95 @@ check_hash_extent(struct pctx *c)
 	return 0;
 }
 
+/* A node is inside a solid past this depth (m): a cloth laid on a box's
+ * top to the last bit stays out. */
+#define START_INSIDE_DEPTH 1e-9
+
+/* The cloth's node at grid position (i, j) as it starts. */
+static vec3
+start_node(const struct scene *sc, int i, int j)
+{
+	return v3_madd(v3_madd(v3_load(sc->origin), v3_load(sc->warp_axis), i * sc->spacing),
+	    v3_load(sc->weft_axis), j * sc->spacing);
+}
+
+/* Whether a solid may hold a node of the cloth as it starts: its box meets
+ * the flat cloth's, and a plane (whose distance is affine) holds a corner. */
+static bool
+may_hold_cloth(const struct scene *sc, const struct obstacle *o)
+{
+	vec3 corner[4], lo, hi, clo, chi;
+	int k;
+
+	for (k = 0; k < 4; k++)
+		corner[k] = start_node(sc, k & 1 ? sc->nu - 1 : 0, k & 2 ? sc->nv - 1 : 0);
+	if (o->kind == OBSTACLE_PLANE) {
+		for (k = 0; k < 4; k++)
+			if (obstacle_distance(o, corner[k], NULL, NULL) < -START_INSIDE_DEPTH)
+				return true;
+		return false;
+	}
+	clo = chi = corner[0];
+	for (k = 1; k < 4; k++) {
+		clo = v3(fmin(clo.x, corner[k].x), fmin(clo.y, corner[k].y), fmin(clo.z, corner[k].z));
+		chi = v3(fmax(chi.x, corner[k].x), fmax(chi.y, corner[k].y), fmax(chi.z, corner[k].z));
+	}
+	obstacle_bounds(o, &lo, &hi);
+	return clo.x <= hi.x && chi.x >= lo.x && clo.y <= hi.y && chi.y >= lo.y &&
+	    clo.z <= hi.z && chi.z >= lo.z;
+}
+
+/*
+ * A cloth that starts inside a solid obstacle is refused, at its origin:
+ * the first step would throw its nodes out (a run said "the network
+ * tore"). Meshes are left out: the cloth meets them as surfaces, from
+ * either side (the icosahedron's node lives inside one).
+ */
+static int
+check_start_outside(struct pctx *c)
+{
+	const struct scene *sc = c->sc;
+	size_t o;
+	int i, j;
+
+	for (o = 0; o < sc->nobstacles; o++) {
+		const struct obstacle *ob = &sc->obstacles[o];
+		long count = 0;
+		int fi = 0, fj = 0;
+		double depth = 0;
+
+		if (ob->kind == OBSTACLE_MESH || !may_hold_cloth(sc, ob))
+			continue;
+		for (j = 0; j < sc->nv; j++)
+			for (i = 0; i < sc->nu; i++) {
+				double d;
+
+				if (!cloth_grid_has_node(sc->shape, sc->nu, sc->nv, i, j) ||
+				    !((d = obstacle_distance(ob, start_node(sc, i, j), NULL, NULL)) <
+				    -START_INSIDE_DEPTH))
+					continue;
+				if (count++ == 0) {
+					fi = i;
+					fj = j;
+					depth = -d;
+				}
+			}
+		if (count > 0) {
+			vec3 p = start_node(sc, fi, fj);
+			char more[48] = "";
+
+			if (count > 1)
+				snprintf(more, sizeof more, " (%ld nodes in all)", count);
+			return fail(c, c->origin_line, "origin: the cloth starts inside the [%s] of "
+			    "line %d: its node at i %d, j %d, (%g, %g, %g) m, is %.3g mm inside%s; "
+			    "expected the whole cloth outside the obstacles as it starts",
+			    obstacle_kind_name[ob->kind], ob->line, fi, fj, p.x, p.y, p.z,
+			    depth * 1e3, more);
+		}
+	}
+	return 0;
+}
+
 static void
 set_defaults(struct scene *sc)
 {
@@ -1014,9 +1212,9 @@ scene_section_repeats(const char *name)
 /* text (with its overrides, if ov) into sc. */
 static int
 parse_text(struct scene *sc, const char *path, const char *text, const struct override_text *ov,
-    struct drape_err *err)
+    enum units_bare bare, struct drape_err *err)
 {
-	struct pctx c = { path, err, sc, ov, NULL, 0, 0, 0 };
+	struct pctx c = { path, err, sc, ov, bare, NULL, 0, 0, 0, 0 };
 	int seen[NSECTION_KINDS] = { 0 };
 	struct ini ini;
 	size_t i, k;
@@ -1083,6 +1281,8 @@ parse_text(struct scene *sc, const char *path, const char *text, const struct ov
 			goto out;
 	if (check_hash_extent(&c) != 0)
 		goto out;
+	if (bare == UNITS_BARE_REFUSED && check_start_outside(&c) != 0)
+		goto out;
 	rc = 0;
 out:
 	for (i = 0; i < c.nraw; i++)
@@ -1097,7 +1297,13 @@ out:
 int
 scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err)
 {
-	return parse_text(sc, path, text, NULL, err);
+	return parse_text(sc, path, text, NULL, UNITS_BARE_REFUSED, err);
+}
+
+int
+scene_parse_recorded(struct scene *sc, const char *path, const char *text, struct drape_err *err)
+{
+	return parse_text(sc, path, text, NULL, UNITS_BARE_SI, err);
 }
 
 int
@@ -1108,11 +1314,11 @@ scene_parse_set(struct scene *sc, const char *path, const char *text, const char
 	int rc;
 
 	if (nsets == 0)
-		return parse_text(sc, path, text, NULL, err);
+		return parse_text(sc, path, text, NULL, UNITS_BARE_REFUSED, err);
 	memset(sc, 0, sizeof *sc);
 	if (override_apply(&ov, path, text, sets, nsets, err) != 0)
 		return -1;
-	rc = parse_text(sc, path, ov.text, &ov, err);
+	rc = parse_text(sc, path, ov.text, &ov, UNITS_BARE_REFUSED, err);
 	override_free(&ov);
 	return rc;
 }

@@ -132,6 +132,12 @@ int scene_load(struct scene *sc, const char *path, struct drape_err *err);
 int scene_parse_bytes(struct scene *sc, const char *path, const void *data, size_t len,
     struct drape_err *err);
 int scene_parse(struct scene *sc, const char *path, const char *text, struct drape_err *err);
+/* A scene a replay recorded: as scene_parse, but a number without its unit
+ * is in SI units, as drape read it before units were required, and a cloth
+ * that started inside an obstacle is left as it ran: a replay replays what
+ * was run. */
+int scene_parse_recorded(struct scene *sc, const char *path, const char *text,
+    struct drape_err *err);
 
 /* The steps a duration takes at dt, and the frames it holds at an output
  * rate; a scene keeps them to SCENE_MAX_STEPS and SCENE_MAX_FRAMES, and so

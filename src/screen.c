@@ -75,13 +75,13 @@ replay_status(char *buf, int width, const struct status_info *si)
 	base = base != NULL && base[1] != '\0' ? base + 1 : p->file;
 	if (width >= 110)
 		snprintf(buf, (size_t)width + 1, "%s  %s  step %ld of %ld  t %.5f s  frame %ld/%ld "
-		    "(step %ld)  %s  dt %.3g s  E %.4e J", base, si->mode, s->step, p->last, s->t,
-		    p->frame, p->frames, p->frame_step, s->sc->name, s->dt,
-		    energy_total(&s->energy));
+		    "(step %ld)  %s  dt %.3g s  E %.4e J  plays at %s", base, si->mode, s->step,
+		    p->last, s->t, p->frame, p->frames, p->frame_step, s->sc->name, s->dt,
+		    energy_total(&s->energy), si->pace);
 	else
-		snprintf(buf, (size_t)width + 1, "%s %s step %ld t %.4fs frame %ld/%ld@%ld E %.3eJ",
-		    base, si->mode, s->step, s->t, p->frame, p->frames, p->frame_step,
-		    energy_total(&s->energy));
+		snprintf(buf, (size_t)width + 1, "%s %s step %ld t %.4fs frame %ld/%ld@%ld E %.3eJ "
+		    "%s", base, si->mode, s->step, s->t, p->frame, p->frames, p->frame_step,
+		    energy_total(&s->energy), si->pace);
 }
 
 void
@@ -94,19 +94,36 @@ screen_status(char *buf, int width, const struct status_info *si)
 		replay_status(buf, width, si);
 		return;
 	}
+	/* the pace asked for, and the speed measured (which falls short of
+	 * it where the run cannot keep up) */
 	if (si->speed > 0)
-		snprintf(speed, sizeof speed, "%.2gx", si->speed);
+		snprintf(speed, sizeof speed, " (%.2gx)", si->speed);
 	else
-		snprintf(speed, sizeof speed, "-x");
+		speed[0] = '\0';
 	if (width >= 110)
 		snprintf(buf, (size_t)width + 1, "%s  t %.5f s  step %ld  dt %.3g s  %s  "
-		    "E %.4e J  %s real (%ld steps/frame)  %s  recording: %s", s->sc->name, s->t,
-		    s->step, s->dt, s->integrator, energy_total(&s->energy), speed,
-		    si->steps_per_frame, si->mode, si->recording);
+		    "E %.4e J  plays at %s%s of real time  %s  recording: %s", s->sc->name, s->t,
+		    s->step, s->dt, s->integrator, energy_total(&s->energy), si->pace, speed,
+		    si->mode, si->recording);
 	else	/* 80 columns: the same facts, tighter */
-		snprintf(buf, (size_t)width + 1, "t %.4fs step %ld dt %.2gs %s E %.3eJ %s real %s "
-		    "rec:%s", s->t, s->step, s->dt, s->integrator, energy_total(&s->energy), speed,
-		    si->mode, strcmp(si->recording, "no") == 0 ? "no" : "on");
+		snprintf(buf, (size_t)width + 1, "t %.4fs step %ld dt %.2gs %s E %.3eJ %s%s %s%s",
+		    s->t, s->step, s->dt, s->integrator, energy_total(&s->energy), si->pace, speed,
+		    si->mode, strcmp(si->recording, "no") == 0 ? "" : " rec");
+}
+
+void
+screen_keys(char *buf, int width, const char *const *items, size_t n)
+{
+	size_t i, len = 0, want;
+
+	buf[0] = '\0';
+	for (i = 0; i < n; i++) {
+		want = len + (len > 0 ? 2 : 0) + strlen(items[i]);
+		if (want > (size_t)width)
+			continue;	/* a shorter one further on may fit */
+		snprintf(buf + len, (size_t)width + 1 - len, "%s%s", len > 0 ? "  " : "", items[i]);
+		len = want;
+	}
 }
 
 void
@@ -196,7 +213,7 @@ screen_node(struct text *t, const struct source_state *s, int node, const vec3 *
 			snprintf(with, sizeof with, "ob%d", e->obstacle);
 		else
 			snprintf(with, sizeof with, "%d", e->other);
-		text_add(t, "%6ld %3s %5s %+6.3f %+6.3f", e->step, short_type[e->type], with,
+		text_add(t, "%6ld %3s %5s %+6.3f %+6.3f", step_shown(e->step), short_type[e->type], with,
 		    e->vn_before, e->vn_after);
 	}
 	if (k == 0)

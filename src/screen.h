@@ -48,14 +48,19 @@ void screen_layout(struct layout *lo, int cols, int rows, enum panel focus);
 /* The status line's facts. */
 struct status_info {
 	const struct source_state *s;
-	double speed;		/* simulated over wall time, while running */
+	double speed;		/* simulated over wall time, measured; 0: not yet */
 	const char *mode;	/* "running", "paused", "end", "blown up" */
-	long steps_per_frame;
+	const char *pace;	/* what it plays at: "1x", "1/2x", "max" (pace.h) */
 	const char *recording;	/* its file, or "no" */
 	const struct source_position *pos;	/* a replay's, or NULL */
 };
 
 void screen_status(char *buf, int width, const struct status_info *si);
+
+/* The key line: as many of the items (most needed first) as fit in
+ * width, two spaces apart; an item is never cut (one cut mid-word at 80
+ * columns). */
+void screen_keys(char *buf, int width, const char *const *items, size_t n);
 void screen_collisions(struct text *t, const struct source_stats *ss);
 void screen_hash(struct text *t, const struct source_stats *ss);
 

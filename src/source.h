@@ -92,6 +92,10 @@ struct source {
 	/* Replays only (NULL in a live run). seek returns false when it cannot
 	 * move (at an end, no keyframe that way); step is for SOURCE_GOTO. */
 	bool (*seek)(void *ctx, enum source_seek how, long step);
+	/* Where seek would go from step from, without going: a step, or -1
+	 * when it could not move; so that keys typed during a slow seek make
+	 * one seek to where the last of them leads. */
+	long (*target)(void *ctx, enum source_seek how, long step, long from);
 	void (*position)(void *ctx, struct source_position *p);
 	/* Logs the events of every step before the current state. */
 	void (*history)(void *ctx, struct evlog *log);
@@ -131,6 +135,7 @@ void source_live_free(struct source_live *lv);
  * must not move once open (the network points into it). */
 struct replay_view;
 /* A replay's steps chunk as its viewer keeps it: statistics only. */
+#define SOURCE_EVENT_CHUNKS 4	/* steps chunks whose events a replay keeps */
 struct replay_stepchunk {
 	size_t chunk;		/* in rp.chunk */
 	size_t count;
@@ -154,8 +159,14 @@ struct source_replay {
 	size_t nsteps;
 	struct replay_events re;	/* the steps' events, read or recomputed */
 	char ev_why[512];	/* why some events since the cursor last moved are unavailable */
-	struct replay_steps evs;	/* the chunk of the cursor's events */
-	size_t evs_of;		/* its index in steps, or SIZE_MAX for none */
+	/* The events of the steps chunks read last (recomputing a digest's
+	 * runs a chunk's steps again: stepping across a chunk boundary and
+	 * back recomputed both chunks each time, 0.12 s a frame), the least
+	 * recently used replaced, never the cursor's (ev points into it). */
+	struct replay_steps evs[SOURCE_EVENT_CHUNKS];
+	size_t evs_of[SOURCE_EVENT_CHUNKS];	/* their indices in steps, or SIZE_MAX */
+	unsigned long evs_used[SOURCE_EVENT_CHUNKS], evs_clock;
+	size_t evs_cursor;	/* the slot of the cursor's events, or SIZE_MAX */
 	struct evlog hist;	/* every event of the steps before hist_at */
 	long hist_at;
 	struct evlog *mark;	/* per steps chunk: hist at its first step, or empty */

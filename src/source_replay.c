@@ -244,19 +244,29 @@ read_events(struct source_replay *sr, size_t i, struct replay_steps *ss)
 	return rc == 0 ? 0 : -1;
 }
 
-/* Steps chunk j's events in sr->evs (the last chunk read is kept); 0, or
- * -1 if it no longer decodes or they are unavailable. */
-static int
+/* Steps chunk j's events, kept among the last few read: their slot in
+ * sr->evs, or SIZE_MAX if they no longer decode or are unavailable. The
+ * cursor's slot is not the one replaced. */
+static size_t
 load_events(struct source_replay *sr, size_t j)
 {
-	if (sr->evs_of == j)
-		return 0;
-	replay_steps_free(&sr->evs);
-	sr->evs_of = SIZE_MAX;
-	if (read_events(sr, sr->steps[j].chunk, &sr->evs) != 0)
-		return -1;
-	sr->evs_of = j;
-	return 0;
+	size_t k, slot = SIZE_MAX;
+
+	for (k = 0; k < SOURCE_EVENT_CHUNKS; k++)
+		if (sr->evs_of[k] == j) {
+			sr->evs_used[k] = ++sr->evs_clock;
+			return k;
+		}
+	for (k = 0; k < SOURCE_EVENT_CHUNKS; k++)
+		if (k != sr->evs_cursor && (slot == SIZE_MAX || sr->evs_used[k] < sr->evs_used[slot]))
+			slot = k;
+	replay_steps_free(&sr->evs[slot]);
+	sr->evs_of[slot] = SIZE_MAX;
+	if (read_events(sr, sr->steps[j].chunk, &sr->evs[slot]) != 0)
+		return SIZE_MAX;
+	sr->evs_of[slot] = j;
+	sr->evs_used[slot] = ++sr->evs_clock;
+	return slot;
 }
 
 /* The step record numbered step, or NULL; *ev and *nev get its events
@@ -264,10 +274,11 @@ load_events(struct source_replay *sr, size_t j)
 static const struct replay_step *
 find_step(struct source_replay *sr, long step, const struct contact_event **ev, size_t *nev)
 {
-	size_t i, j, at;
+	size_t i, j, at, slot;
 
 	*ev = NULL;
 	*nev = 0;
+	sr->evs_cursor = SIZE_MAX;
 	for (i = 0; i < sr->nsteps; i++) {
 		const struct replay_stepchunk *sc = &sr->steps[i];
 
@@ -277,10 +288,11 @@ find_step(struct source_replay *sr, long step, const struct contact_event **ev, 
 			at += (size_t)sc->s[j].nev;
 		if (j == sc->count)
 			continue;
-		if (sc->s[j].nev > 0 && load_events(sr, i) == 0 &&
-		    at + (size_t)sc->s[j].nev <= sr->evs.nev) {
-			*ev = sr->evs.ev + at;
+		if (sc->s[j].nev > 0 && (slot = load_events(sr, i)) != SIZE_MAX &&
+		    at + (size_t)sc->s[j].nev <= sr->evs[slot].nev) {
+			*ev = sr->evs[slot].ev + at;
 			*nev = (size_t)sc->s[j].nev;
+			sr->evs_cursor = slot;
 		}
 		return &sc->s[j];
 	}
@@ -377,27 +389,29 @@ replay_state(void *ctx, struct source_state *s)
 	s->ev_note = sr->ev_why[0] != '\0' ? sr->ev_why : NULL;
 }
 
-/* The step of the next (dir > 0) or previous view after or before the
- * cursor, keyframes only if asked; -1 for none. */
+/* The step of the next (dir > 0) or previous view after or before step
+ * from, keyframes only if asked; -1 for none. */
 static long
-neighbour(const struct source_replay *sr, int dir, bool keys)
+neighbour(const struct source_replay *sr, long from, int dir, bool keys)
 {
 	size_t i;
 
 	if (dir > 0) {
 		for (i = 0; i < sr->nviews; i++)
-			if (sr->view[i].step > sr->cursor && (!keys || sr->view[i].key))
+			if (sr->view[i].step > from && (!keys || sr->view[i].key))
 				return sr->view[i].step;
 	} else {
 		for (i = sr->nviews; i-- > 0;)
-			if (sr->view[i].step < sr->cursor && (!keys || sr->view[i].key))
+			if (sr->view[i].step < from && (!keys || sr->view[i].key))
 				return sr->view[i].step;
 	}
 	return -1;
 }
 
-static bool
-replay_seek(void *ctx, enum source_seek how, long step)
+/* Where a seek from step from goes: a step, or -1 for nowhere (an end, no
+ * keyframe that way). Nothing is read. */
+static long
+replay_target(void *ctx, enum source_seek how, long step, long from)
 {
 	struct source_replay *sr = ctx;
 	long to = -1;
@@ -405,17 +419,17 @@ replay_seek(void *ctx, enum source_seek how, long step)
 	switch (how) {
 	case SOURCE_FRAME_NEXT:
 		/* past the last frame, the last step with statistics */
-		if ((to = neighbour(sr, 1, false)) < 0 && sr->cursor < sr->last)
+		if ((to = neighbour(sr, from, 1, false)) < 0 && from < sr->last)
 			to = sr->last;
 		break;
 	case SOURCE_FRAME_PREV:
-		to = neighbour(sr, -1, false);
+		to = neighbour(sr, from, -1, false);
 		break;
 	case SOURCE_KEY_NEXT:
-		to = neighbour(sr, 1, true);
+		to = neighbour(sr, from, 1, true);
 		break;
 	case SOURCE_KEY_PREV:
-		to = neighbour(sr, -1, true);
+		to = neighbour(sr, from, -1, true);
 		break;
 	case SOURCE_GOTO:
 		to = step < sr->first ? sr->first : step > sr->last ? sr->last : step;
@@ -427,9 +441,16 @@ replay_seek(void *ctx, enum source_seek how, long step)
 		to = sr->last;
 		break;
 	}
-	if (to < 0 || (to == sr->cursor && how != SOURCE_GOTO))
-		return false;
-	return set_cursor(sr, to) == 0;
+	return to < 0 || (to == from && how != SOURCE_GOTO) ? -1 : to;
+}
+
+static bool
+replay_seek(void *ctx, enum source_seek how, long step)
+{
+	struct source_replay *sr = ctx;
+	long to = replay_target(ctx, how, step, sr->cursor);
+
+	return to >= 0 && set_cursor(sr, to) == 0;
 }
 
 static enum source_step
@@ -514,7 +535,8 @@ advance_history(struct source_replay *sr, long to)
 
 	for (j = 0; j < sr->nsteps; j++) {
 		const struct replay_stepchunk *sc = &sr->steps[j];
-		struct replay_steps ss, *use = &ss;
+		const struct replay_steps *use;
+		size_t slot;
 
 		if (sc->s[sc->count - 1].step < sr->hist_at || sc->s[0].step >= to)
 			continue;
@@ -523,16 +545,13 @@ advance_history(struct source_replay *sr, long to)
 		if (sr->mark_every > 0 && j % sr->mark_every == 0 && sr->mark[j].n == 0 &&
 		    sc->s[0].step >= sr->hist_at && evlog_init(&sr->mark[j], sr->net.cl.n) == 0)
 			evlog_copy(&sr->mark[j], &sr->hist);
-		if (j == sr->evs_of)
-			use = &sr->evs;
-		else if (read_events(sr, sc->chunk, &ss) != 0)
+		if ((slot = load_events(sr, j)) == SIZE_MAX)
 			continue;
+		use = &sr->evs[slot];
 		/* a chunk's events are in step order */
 		for (n = 0; n < use->nev && use->ev[n].step < to; n++)
 			if (use->ev[n].step >= sr->hist_at)
 				evlog_add(&sr->hist, &use->ev[n], 1);
-		if (use == &ss)
-			replay_steps_free(&ss);
 	}
 	sr->hist_at = to;
 }
@@ -589,7 +608,9 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 	sr->built = true;
 	replay_events_init(&sr->re, &sr->rp, sr->file);
 	n3 = 3 * (size_t)sr->net.cl.n;
-	sr->evs_of = SIZE_MAX;
+	for (i = 0; i < SOURCE_EVENT_CHUNKS; i++)
+		sr->evs_of[i] = SIZE_MAX;
+	sr->evs_cursor = SIZE_MAX;
 	if ((sr->y = malloc(2 * n3 * sizeof *sr->y)) == NULL ||
 	    (sr->prev = malloc(n3 * sizeof *sr->prev)) == NULL ||
 	    (sr->accel = malloc(n3 * sizeof *sr->accel)) == NULL ||
@@ -619,6 +640,7 @@ source_replay_open(struct source *src, struct source_replay *sr, const char *pat
 	src->stats = replay_stats;
 	src->force = replay_force;
 	src->seek = replay_seek;
+	src->target = replay_target;
 	src->position = replay_position;
 	src->history = replay_history;
 	return 0;
@@ -641,7 +663,8 @@ source_replay_close(struct source_replay *sr)
 	for (i = 0; i < sr->nsteps; i++)
 		free(sr->steps[i].s);
 	free(sr->steps);
-	replay_steps_free(&sr->evs);
+	for (i = 0; i < SOURCE_EVENT_CHUNKS; i++)
+		replay_steps_free(&sr->evs[i]);
 	evlog_free(&sr->hist);
 	drop_marks(sr);
 	free(sr->view);

@@ -21,13 +21,13 @@
 #include "colouring.h"
 #include "evlog.h"
 #include "glyphs.h"
+#include "pace.h"
 #include "paint.h"
 #include "raster.h"
 #include "screen.h"
 #include "tui.h"
 #include "view.h"
 
-#define STEPS_PER_FRAME_MAX (1L << 16)
 #define ROTATE_STEP (15 * V3_PI / 180)
 #define ZOOM_STEP 1.25
 #define PAN_STEP 0.1		/* of the framed radius */
@@ -63,16 +63,23 @@ struct tui {
 	bool colour;
 	struct camera cam;
 	int preset;
+	bool follow;		/* f: the camera frames the cloth as it is, each redraw */
 	struct raster r;
 	struct evlog log;
 	bool log_stale;		/* a replay's log is to be gathered again (log_now) */
 	int selected;
 	enum panel focus;
 	bool running, ended, help, quit, dirty;
-	long spf;		/* steps per frame, at most */
-	double speed;		/* simulated over wall time */
+	struct pace pace;	/* real time, a multiple of it, or flat out */
+	double speed;		/* simulated over wall time, measured */
 	double mark_wall, mark_t;
 	bool replay;		/* the source seeks */
+	/* A replay's keys move a target and one seek goes there when the
+	 * keys typed so far are read: a seek takes up to half a second the
+	 * first time (a digest's events are recomputed), and keys typed
+	 * meanwhile each made another, landing late. */
+	bool seek_pending;
+	long seek_to;
 	bool prompt;
 	bool prompt_step;	/* the prompt asks for a step, else a node */
 	char input[16];
@@ -141,15 +148,39 @@ selected_events(struct tui *ui)
 	return ui->selected >= 0 && ui->selected < ui->log.n ? ui->log.count[ui->selected] : 0;
 }
 
+/* A replay's move, from where the keys before it lead: none is said when
+ * it cannot move. The seek itself waits for flush_seek. */
 static void
 seek(struct tui *ui, enum source_seek how, long step, const char *none)
 {
+	struct source_state s;
+	long from, to;
+
 	ui->running = false;
-	if (!ui->src->seek(ui->src->ctx, how, step)) {
+	ui->src->state(ui->src->ctx, &s);
+	from = ui->seek_pending ? ui->seek_to : s.step;
+	if ((to = ui->src->target(ui->src->ctx, how, step, from)) < 0) {
 		say(ui, "%s", none);
 		return;
 	}
+	ui->seek_pending = true;
+	ui->seek_to = to;
+}
+
+/* The one seek to where the keys read so far lead. */
+static void
+flush_seek(struct tui *ui)
+{
+	if (!ui->seek_pending)
+		return;
+	ui->seek_pending = false;
+	if (!ui->src->seek(ui->src->ctx, SOURCE_GOTO, ui->seek_to)) {
+		say(ui, "out of memory for step %ld", ui->seek_to);
+		return;
+	}
 	rebuild_log(ui);
+	if (ui->ended)
+		say(ui, "end of the replay");
 }
 
 /* One step; false when there is none (the end, or a blow-up). */
@@ -197,22 +228,25 @@ step_once(struct tui *ui)
 	return false;
 }
 
-/* As many steps as spf and the frame's time allow. */
+/* Steps up to the simulated time the pace asks for now, as far as the
+ * frame's time allows; a run that cannot keep up goes on from where it
+ * is, not racing ahead later. */
 static void
-run_frame(struct tui *ui, double budget)
+run_frame(struct tui *ui, double budget, double period)
 {
-	double start = clock_seconds(), t;
-	long k;
+	double start = clock_seconds(), target = pace_target(&ui->pace, start), t;
 	struct source_state s;
 
-	for (k = 0; k < ui->spf && ui->running; k++) {
+	ui->src->state(ui->src->ctx, &s);
+	while (ui->running && s.t < target) {
 		if (!step_once(ui))
 			break;
+		ui->src->state(ui->src->ctx, &s);
 		if (clock_seconds() - start > budget || quit_signal)
 			break;
 	}
 	t = clock_seconds();
-	ui->src->state(ui->src->ctx, &s);
+	pace_keep_up(&ui->pace, t, s.t, period);
 	if (t - ui->mark_wall >= 0.5) {
 		ui->speed = (s.t - ui->mark_t) / (t - ui->mark_wall);
 		ui->mark_wall = t;
@@ -239,7 +273,7 @@ seek_event(struct tui *ui)
 	ui->src->state(ui->src->ctx, &s);
 	if (selected_events(ui) > before)
 		say(ui, "node %d: an event at step %ld (%ld %s on)", ui->selected,
-		    evlog_get(&ui->log, ui->selected, 0)->step, steps, unit);
+		    step_shown(evlog_get(&ui->log, ui->selected, 0)->step), steps, unit);
 	else if (!ui->ended && !ui->res->blown_up)
 		say(ui, "node %d: no event in %ld %s (to step %ld); e again goes on",
 		    ui->selected, steps, unit, s.step);
@@ -413,6 +447,7 @@ act_run(struct tui *ui, int ch)
 		say(ui, "end of the replay (Home goes back to the first step)");
 	ui->mark_wall = clock_seconds();
 	ui->mark_t = s.t;
+	pace_anchor(&ui->pace, ui->mark_wall, s.t);
 }
 
 static void
@@ -423,14 +458,31 @@ act_step(struct tui *ui, int ch)
 	step_once(ui);
 }
 
+/* + and - twice or half as fast, * as fast as it can (and back); the
+ * measured speed restarts from here. */
 static void
 act_speed(struct tui *ui, int ch)
 {
-	if (ch == '-' && ui->spf > 1)
-		ui->spf /= 2;
-	else if (ch != '-' && ui->spf < STEPS_PER_FRAME_MAX)
-		ui->spf *= 2;
-	say(ui, "at most %ld %s a frame", ui->spf, ui->replay ? "replay frames" : "steps");
+	struct source_state s;
+	char label[16];
+	bool moved = true;
+
+	if (ch == '*')
+		pace_toggle_flat_out(&ui->pace);
+	else
+		moved = pace_change(&ui->pace, ch == '-' ? -1 : 1);
+	ui->src->state(ui->src->ctx, &s);
+	ui->mark_wall = clock_seconds();
+	ui->mark_t = s.t;
+	ui->speed = 0;
+	pace_anchor(&ui->pace, ui->mark_wall, s.t);
+	pace_label(&ui->pace, label, sizeof label);
+	if (ui->pace.flat_out)
+		say(ui, "as fast as it can (* again: %s)", label);
+	else if (!moved)
+		say(ui, "%s real time is the %s", label, ch == '-' ? "slowest" : "fastest");
+	else
+		say(ui, "%s real time%s", label, ui->pace.log2 == 0 ? " (the default)" : "");
 }
 
 static void
@@ -477,6 +529,30 @@ act_view(struct tui *ui, int ch)
 	ui->preset = (ui->preset + 1) % VIEW_NPRESETS;
 	reset_camera(ui);
 	say(ui, "view: %s", view_preset_name[ui->preset]);
+}
+
+/* The cloth as it is now, framed: its box's sphere, the view's direction,
+ * zoom and pan kept. */
+static void
+frame_cloth(struct tui *ui, const struct source_state *s)
+{
+	vec3 lo = v3(INFINITY, INFINITY, INFINITY), hi = v3(-INFINITY, -INFINITY, -INFINITY);
+
+	view_cloth_box(s->x, s->cl->n, &lo, &hi);
+	view_frame_cloth(s->sc, s->cl->x0, s->cl->n, lo, hi, &ui->cam.target, &ui->cam.radius);
+}
+
+/* f: the view follows the cloth (at the strip's end its pile was a speck
+ * in the scene's framing), or frames the whole scene again. */
+static void
+act_follow(struct tui *ui, int ch)
+{
+	(void)ch;
+	ui->follow = !ui->follow;
+	if (!ui->follow)
+		reset_camera(ui);
+	say(ui, "%s", ui->follow ? "view: following the cloth (f again: the whole scene)" :
+	    "view: the whole scene");
 }
 
 static void
@@ -528,7 +604,7 @@ act_frame(struct tui *ui, int ch)
 	if (ch == KEY_LEFT)
 		seek(ui, SOURCE_FRAME_PREV, 0, "at the first frame");
 	else
-		act_step(ui, ch);	/* one frame, or the end */
+		seek(ui, SOURCE_FRAME_NEXT, 0, "end of the replay");
 }
 
 static void
@@ -553,8 +629,7 @@ act_ends(struct tui *ui, int ch)
  * replay's arrows move in time before they rotate. */
 static const struct binding bindings[] = {
 	{ KEYS_LIVE, { ' ' }, "space", "run / pause", act_run },
-	{ KEYS_REPLAY, { ' ' }, "space", "play / pause (+ / -: more / fewer frames a redraw)",
-	    act_run },
+	{ KEYS_REPLAY, { ' ' }, "space", "play / pause", act_run },
 	{ KEYS_LIVE, { 'n', '.' }, "n or .", "one step (pauses)", act_step },
 	{ KEYS_REPLAY, { 'n', '.', KEY_RIGHT, KEY_LEFT }, "n . or Right",
 	    "next frame; Left previous frame", act_frame },
@@ -562,30 +637,41 @@ static const struct binding bindings[] = {
 	    "next / previous keyframe; Home / End first / last step", act_keyframe },
 	{ KEYS_REPLAY, { KEY_HOME, KEY_END }, NULL, NULL, act_ends },
 	{ KEYS_REPLAY, { 'g' }, "g", "go to a step (Enter, Esc cancels)", act_prompt },
-	{ KEYS_LIVE, { '+', '=', '-' }, "+ / -", "more / fewer steps per frame", act_speed },
-	{ KEYS_REPLAY, { '+', '=', '-' }, NULL, NULL, act_speed },
+	{ KEYS_BOTH, { '+', '=', '-', '*' }, "+ / -  *", "twice / half as fast (1x real time), "
+	    "as fast as it can", act_speed },
 	{ KEYS_LIVE, { KEY_LEFT, KEY_RIGHT, KEY_UP, KEY_DOWN, 'h', 'j', 'k', 'l' },
-	    "arrows, h j k l", "rotate (yaw, pitch)", act_rotate },
+	    "arrows, h j k l", "rotate (yaw, pitch); H J K L pan", act_rotate },
 	{ KEYS_REPLAY, { KEY_UP, KEY_DOWN, 'h', 'j', 'k', 'l' }, "h j k l, Up Down",
-	    "rotate (yaw, pitch)", act_rotate },
-	{ KEYS_BOTH, { 'H', 'J', 'K', 'L' }, "H J K L", "pan", act_pan },
+	    "rotate (yaw, pitch); H J K L pan", act_rotate },
+	{ KEYS_BOTH, { 'H', 'J', 'K', 'L' }, NULL, NULL, act_pan },
 	{ KEYS_BOTH, { 'z', 'Z' }, "z / Z", "zoom in / out", act_zoom },
 	{ KEYS_BOTH, { 'v' }, "v", "next view: front, side, top, iso", act_view },
+	{ KEYS_BOTH, { 'f' }, "f", "follow the cloth, framed as it goes; again: the whole scene",
+	    act_follow },
 	{ KEYS_BOTH, { 'o' }, "o", "orthographic / perspective", act_perspective },
 	{ KEYS_BOTH, { 'c', 'u' }, "c  u", "next colouring (strain, contact) / glyphs (braille, blocks)",
 	    act_look },
 	{ KEYS_BOTH, { '\t' }, "Tab", "next panel", act_panel },
-	{ KEYS_BOTH, { '[', ']' }, "[ / ]", "previous / next node", act_node },
-	{ KEYS_BOTH, { '/' }, "/", "go to a node id (Enter, Esc cancels)", act_prompt },
+	{ KEYS_BOTH, { '[', ']' }, "[ / ]  /", "previous / next node; go to a node id (Enter, "
+	    "Esc cancels)", act_node },
+	{ KEYS_BOTH, { '/' }, NULL, NULL, act_prompt },
 	{ KEYS_LIVE, { 'e' }, "e", "run to the selected node's next event", act_event },
 	{ KEYS_REPLAY, { 'e' }, "e", "play to the selected node's next event", act_event },
 	{ KEYS_LIVE, { 'r' }, "r", "start / stop recording (drape-DATE-TIME.drr here)",
 	    act_record },
 	{ KEYS_REPLAY, { 'r' }, NULL, NULL, act_no_record },
-	{ KEYS_BOTH, { 12 }, "Ctrl-L", "redraw", act_redraw },
-	{ KEYS_BOTH, { '?', KEY_F(1) }, "? or F1", "this help", act_help },
+	{ KEYS_BOTH, { 12 }, NULL, NULL, act_redraw },
+	{ KEYS_BOTH, { '?', KEY_F(1) }, "? or F1", "this help (Ctrl-L redraws the screen)",
+	    act_help },
 	{ KEYS_BOTH, { 'q' }, "q", "quit", act_quit },
 };
+
+/* The keys that move in a replay, whose seeks wait for flush_seek. */
+static bool
+moves(void (*act)(struct tui *, int))
+{
+	return act == act_frame || act == act_keyframe || act == act_ends;
+}
 
 static bool
 applies(const struct binding *b, bool replay)
@@ -625,6 +711,10 @@ key(struct tui *ui, int ch)
 			continue;
 		for (k = 0; bindings[i].keys[k] != 0; k++)
 			if (bindings[i].keys[k] == ch) {
+				/* a key that is no move sees the place the moves
+				 * before it lead to */
+				if (!moves(bindings[i].act))
+					flush_seek(ui);
 				bindings[i].act(ui, ch);
 				return;
 			}
@@ -863,6 +953,35 @@ draw_panel(struct tui *ui, enum panel p, struct rect at, const struct source_sta
 	draw_text(&t, at, false);
 }
 
+/* The key line, most needed first, as much as the width holds. */
+static void
+key_line(const struct tui *ui, char *line, int width, const char *rec)
+{
+	static const char *const live[] = { "? help", "q quit", "space run/pause",
+		"+/- speed", "* max", "n step", "f follow", "arrows rotate", "z/Z zoom",
+		"v view", "Tab panel", "[/] node" };
+	static const char *const replay[] = { "? help", "q quit", "space play",
+		"+/- speed", "Left/Right frame", "PgUp/PgDn keyframe", "g step", "f follow",
+		"Home/End", "Tab panel", "/ node" };
+	const char *items[16];
+	char recording[TEXT_WIDTH];
+	size_t n = 0, i;
+
+	_Static_assert(1 + sizeof live / sizeof live[0] <= sizeof items / sizeof items[0] &&
+	    sizeof replay / sizeof replay[0] <= sizeof items / sizeof items[0], "items holds them");
+	if (rec != NULL) {
+		snprintf(recording, sizeof recording, "recording into %s (r stops)", rec);
+		items[n++] = recording;
+	}
+	if (ui->replay)
+		for (i = 0; i < sizeof replay / sizeof replay[0]; i++)
+			items[n++] = replay[i];
+	else
+		for (i = 0; i < sizeof live / sizeof live[0]; i++)
+			items[n++] = live[i];
+	screen_keys(line, width, items, n);
+}
+
 static int
 draw(struct tui *ui)
 {
@@ -871,7 +990,7 @@ draw(struct tui *ui)
 	struct status_info si;
 	struct source_position pos;
 	const char *rec;
-	char line[TEXT_WIDTH * 2];
+	char line[TEXT_WIDTH * 2], pace[16];
 	int rows, cols, k;
 
 	getmaxyx(stdscr, rows, cols);
@@ -888,6 +1007,8 @@ draw(struct tui *ui)
 		tui_help(&t, ui->replay);
 		draw_text(&t, (struct rect){ 2, 1, cols - 2, rows - 1 }, false);
 	} else {
+		if (ui->follow)
+			frame_cloth(ui, &s);
 		si.s = &s;
 		si.speed = ui->speed;	/* the latest measured, kept while paused */
 		if (ui->replay) {
@@ -903,7 +1024,8 @@ draw(struct tui *ui)
 			si.recording = rec != NULL ? rec : "no";
 			si.pos = NULL;
 		}
-		si.steps_per_frame = ui->spf;
+		pace_label(&ui->pace, pace, sizeof pace);
+		si.pace = pace;
 		screen_status(line, cols < (int)sizeof line - 1 ? cols : (int)sizeof line - 1, &si);
 		attrset(A_REVERSE);
 		mvhline(0, 0, ' ', cols);
@@ -933,15 +1055,8 @@ draw(struct tui *ui)
 			    ui->input);
 		else if (ui->msg[0] != '\0')
 			snprintf(line, sizeof line, "%s", ui->msg);
-		else if (ui->replay)
-			snprintf(line, sizeof line, "? help  q quit  space play  Left/Right frame  "
-			    "PgUp/PgDn keyframe  g step  Home/End  Tab panel  / node");
-		else if (rec != NULL)
-			snprintf(line, sizeof line, "recording into %s (r stops)  ? help  q quit  "
-			    "space run/pause", rec);
 		else
-			snprintf(line, sizeof line, "? help  q quit  space run/pause  n step  +/- speed  "
-			    "arrows rotate  z/Z zoom  v view  Tab panel  [/] node");
+			key_line(ui, line, cols < (int)sizeof line ? cols : (int)sizeof line - 1, rec);
 		mvaddnstr(lo.keys.y, 0, line, cols);
 	}
 	wnoutrefresh(stdscr);
@@ -990,7 +1105,7 @@ loop(struct tui *ui)
 		double t = clock_seconds();
 
 		if (ui->running && t >= next) {
-			run_frame(ui, BUSY_FRACTION * period);
+			run_frame(ui, BUSY_FRACTION * period, period);
 			next = t + period;
 			ui->dirty = true;
 		}
@@ -1016,12 +1131,14 @@ loop(struct tui *ui)
 				quit_signal = SIGHUP;	/* ends as a hangup would */
 			continue;
 		}
-		/* every key already typed, then one redraw */
+		/* every key already typed, one seek to where they lead, then
+		 * one redraw */
 		do {
 			if (ch != KEY_RESIZE)
 				key(ui, ch);
 			timeout(0);
 		} while (!ui->quit && (ch = getch()) != ERR);
+		flush_seek(ui);
 		ui->dirty = true;
 	}
 }
@@ -1042,7 +1159,6 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 	ui.opt = *opt;
 	ui.res = res;
 	ui.replay = src->seek != NULL;
-	ui.spf = ui.replay ? 1 : 256;	/* a replay plays a frame a redraw */
 	ui.running = !opt->paused;
 	ui.preset = VIEW_ISO;
 	raster_init(&ui.r);
@@ -1070,6 +1186,7 @@ tui_run(struct source *src, const struct tui_opts *opt, struct tui_result *res)
 	reset_camera(&ui);
 	ui.mark_wall = clock_seconds();
 	ui.mark_t = s.t;
+	pace_init(&ui.pace, ui.mark_wall, s.t);	/* real time: what it looks like */
 
 	/* ours before ncurses', which then leaves them alone */
 	quit_signal = 0;

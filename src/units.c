@@ -55,6 +55,25 @@ units_describe(enum unit_dim dim)
 	return "a value";
 }
 
+const char *
+units_example(enum unit_dim dim, int n)
+{
+	switch (dim) {
+	case DIM_NONE: return NULL;
+	case DIM_LENGTH: return n == 1 ? "10 mm" : "0 0.15 0 m";
+	case DIM_TIME: return "2 s";
+	case DIM_AREAL_DENSITY: return "150 g/m2";
+	case DIM_PRESSURE: return "0.45 MPa";
+	case DIM_BENDING: return "3 uN*m";
+	case DIM_FORCE: return n == 1 ? "0.02 mN" : "0 0 0.02 mN";
+	case DIM_VELOCITY: return n == 1 ? "0.25 m/s" : "0 -0.25 0 m/s";
+	case DIM_ACCEL: return n == 1 ? "9.80665 m/s2" : "0 -9.80665 0 m/s2";
+	case DIM_RATE: return "2 /s";
+	case DIM_BYTES: return "512 MB";
+	}
+	return NULL;
+}
+
 static int
 number_start(const char *s)
 {
@@ -85,6 +104,25 @@ no_reason(char *why, size_t whylen)
 int
 units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, size_t whylen)
 {
+	return units_parse_as(s, dim, UNITS_BARE_SI, out, n, why, whylen) == 0 ? 0 : -1;
+}
+
+/* Every number zero: the same in any unit. */
+static int
+all_zero(const double *v, int n)
+{
+	int k;
+
+	for (k = 0; k < n; k++)
+		if (v[k] != 0)
+			return 0;
+	return 1;
+}
+
+int
+units_parse_as(const char *s, enum unit_dim dim, enum units_bare bare, double *out, int n,
+    char *why, size_t whylen)
+{
 	const char *unit = NULL;
 	double factor = 1;
 	char *end;
@@ -99,7 +137,7 @@ units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, siz
 			if (strncasecmp(w, "nan", 3) == 0 || strncasecmp(w, "inf", 3) == 0)
 				snprintf(why, whylen, "not a finite number");
 			else if (k > 0)
-				snprintf(why, whylen, "%d of the %d numbers", k, n);
+				snprintf(why, whylen, "%d number%s, not %d", k, k == 1 ? "" : "s", n);
 			else
 				no_reason(why, whylen);
 			return -1;
@@ -137,6 +175,9 @@ units_parse(const char *s, enum unit_dim dim, double *out, int n, char *why, siz
 		}
 		factor = units[i].factor;
 		unit = units[i].name;
+	} else if (dim != DIM_NONE && bare == UNITS_BARE_REFUSED && !all_zero(out, n)) {
+		no_reason(why, whylen);
+		return UNITS_NO_UNIT;
 	}
 	for (k = 0; k < n; k++) {
 		double si = out[k] * factor;

@@ -154,6 +154,33 @@ view_frame(const struct scene *sc, const double *x, int n, vec3 *target, double 
 }
 
 void
+view_cloth_box(const double *x, int n, vec3 *lo, vec3 *hi)
+{
+	int p;
+
+	for (p = 0; p < n; p++)
+		grow(lo, hi, v3_load(x + 3 * p));
+}
+
+void
+view_frame_cloth(const struct scene *sc, const double *x0, int n, vec3 lo, vec3 hi,
+    vec3 *target, double *radius)
+{
+	vec3 scene_target;
+	double scene_radius;
+
+	view_frame(sc, x0, n, &scene_target, &scene_radius);
+	/* no node, or one: a point has nothing to frame */
+	if (n < 2 || !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) {
+		*target = scene_target;
+		*radius = scene_radius;
+		return;
+	}
+	*target = v3_scale(v3_add(lo, hi), 0.5);
+	*radius = fmax(1.1 * 0.5 * v3_len(v3_sub(hi, lo)), 0.1 * scene_radius);
+}
+
+void
 view_draw(struct raster *r, const struct camera *cam, const struct scene *sc,
     const double *x, int n, const int *tri, size_t ntri,
     const struct contact_event *ev, size_t nev, int selected)

@@ -12,7 +12,7 @@
  * edge: the cloth of tablecloth.scene, seed/seed/keep, no self-contact. */
 static const char MINI[] =
     "[simulation]\nduration = 0.2 s\ndt = auto\nintegrator = rk4\n"
-    "gravity = 9.80665 m/s2\noutput_rate = 50\n"
+    "gravity = 9.80665 m/s2\noutput_rate = 50 Hz\n"
     "[cloth]\nnodes = 6 2\nspacing = 10 mm\norigin = -0.03 0.101 0 m\n"
     "orientation = +x +z\nweight = 150 g/m2\nthickness = 0.55 mm\n"
     "modulus_warp = 0.45 MPa\nmodulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\n"

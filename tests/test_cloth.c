@@ -8,7 +8,7 @@
 #include "vec3.h"
 
 #define CLOTH(nu, nv, extra) \
-	"[simulation]\nduration = 1\n[cloth]\nnodes = " #nu " " #nv "\nspacing = 10 mm\n" \
+	"[simulation]\nduration = 1 s\n[cloth]\nnodes = " #nu " " #nv "\nspacing = 10 mm\n" \
 	"weight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\nmodulus_weft = 10 MPa\n" \
 	extra
 
@@ -275,12 +275,12 @@ forces_are_energy_gradient(void **state)
 	struct cloth cl;
 
 	(void)state;
-	build(&cl, &sc, CLOTH(5, 4, FULL "[load]\nnodes = 2 2\nforce = 0.01 0 0\n"));
+	build(&cl, &sc, CLOTH(5, 4, FULL "[load]\nnodes = 2 2\nforce = 0.01 0 0 N\n"));
 	gradient_check(&sc, &cl);
 	cloth_free(&cl);
 	scene_free(&sc);
 	/* a disc: its rim has the half-width springs and hinges */
-	build(&cl, &sc, CLOTH(9, 9, "shape = disc\n" FULL "[load]\nnodes = 4 4\nforce = 0.01 0 0\n"));
+	build(&cl, &sc, CLOTH(9, 9, "shape = disc\n" FULL "[load]\nnodes = 4 4\nforce = 0.01 0 0 N\n"));
 	gradient_check(&sc, &cl);
 	cloth_free(&cl);
 	scene_free(&sc);
@@ -299,7 +299,7 @@ rigid_motion_is_free(void **state)
 	int p;
 
 	(void)state;
-	build(&cl, &sc, "[simulation]\nduration = 1\ngravity = 0\n[cloth]\nnodes = 5 5\n"
+	build(&cl, &sc, "[simulation]\nduration = 1 s\ngravity = 0\n[cloth]\nnodes = 5 5\n"
 	    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\n"
 	    "modulus_weft = 10 MPa\n" FULL);
 	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);

@@ -400,7 +400,7 @@ static void
 test_failsafe_jam(void **state)
 {
 	static const char text[] =
-	    "[simulation]\nduration = 1\ngravity = 0\n"
+	    "[simulation]\nduration = 1 s\ngravity = 0\n"
 	    "[cloth]\nnodes = 25 3\nspacing = 10 mm\norientation = +x +z\nweight = 150 g/m2\n"
 	    "thickness = 0.5 mm\nmodulus_warp = 0.45 MPa\nmodulus_weft = 0.3 MPa\n"
 	    "shear_modulus = 9 kPa\nbending_warp = 3 uN*m\nbending_weft = 2 uN*m\n"

@@ -118,7 +118,7 @@ slide_on_incline(enum integrator_kind integrator, double mu, double phi)
 	double g = 9.80665, d;
 	vec3 c0;
 
-	snprintf(text, sizeof text, "[simulation]\nduration = 0.5 s\ngravity = %.17g %.17g 0\n"
+	snprintf(text, sizeof text, "[simulation]\nduration = 0.5 s\ngravity = %.17g %.17g 0 m/s2\n"
 	    "integrator = %s\n" FLAT_CLOTH("origin = 0 0.2 0 mm\n") "[plane]\npoint = 0 0 0 m\nfriction = %g\n",
 	    g * sin(phi), -g * cos(phi), integrator_name(integrator), mu);
 	parse_text(&sc, text);

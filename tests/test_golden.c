@@ -20,7 +20,7 @@ static const char small_scene[] =
     "dt = 20 us\n"
     "integrator = rk4\n"
     "gravity = 9.80665 m/s2\n"
-    "output_rate = 50\n"
+    "output_rate = 50 Hz\n"
     "[cloth]\n"
     "nodes = 9 9\n"
     "spacing = 10 mm\n"

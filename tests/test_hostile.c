@@ -187,14 +187,14 @@ output_rate_out_of_range(void **state)
 
 	(void)state;
 	snprintf(args, sizeof args, "run --headless --record '%s/rate.drr' '%%s'", dir);
-	drape_on(&r, args, "rate.scene", SIM "output_rate = 1e300\n" CLOTH);
+	drape_on(&r, args, "rate.scene", SIM "output_rate = 1e300 Hz\n" CLOTH);
 	expect(&r, 2, "rate.scene:3: ", "output_rate: expected at most 1e+09 frames over the "
-	    "duration (0.01 s), so at most 1e+11 per second, got '1e300' (1e+298 frames)");
-	drape_on(&r, "run --headless --until 1e8 '%s'", "ok.scene", SIM "output_rate = 50\n"
+	    "duration (0.01 s), so at most 1e+11 per second, got '1e300 Hz' (1e+298 frames)");
+	drape_on(&r, "run --headless --until 1e8 '%s'", "ok.scene", SIM "output_rate = 50 Hz\n"
 	    "dt = 1 ms\n" CLOTH);
 	expect(&r, 2, "drape run: --until 1e+08 s: ", "expected at most 1e+09 steps of 0.001 s");
 	drape_on(&r, "run --headless --until 1e8 --dt auto '%s'", "ok.scene",
-	    SIM "output_rate = 50\n" CLOTH);
+	    SIM "output_rate = 50 Hz\n" CLOTH);
 	expect(&r, 2, "drape run: --until 1e+08 s: ", "expected at most 1e+09 frames at the "
 	    "scene's output rate of 50 per second (it holds 5e+09)");
 
@@ -284,13 +284,13 @@ step_too_small(void **state)
 	expect(&r, 2, "drape run: --dt 1e-300 s: ", "expected a step that covers the duration "
 	    "(0.01 s) in at most 1e+09 steps (it takes 1e+298)");
 	drape_on(&r, "run --headless --until 1e6 '%s'", "ok.scene", SIM "dt = 1 us\n"
-	    "output_rate = 1e-3\n" CLOTH);
+	    "output_rate = 1e-3 Hz\n" CLOTH);
 	expect(&r, 2, "drape run: --until 1e+06 s: ", "expected at most 1e+09 steps of 1e-06 s "
 	    "(it takes 1e+12)");
 	/* auto: a cloth so stiff that its stable step is 1e-12 s */
 	drape_on(&r, "run --headless '%s'", "stiff.scene", "[simulation]\nduration = 1 s\n"
 	    "dt = auto\n[cloth]\nnodes = 4 4\nspacing = 10 mm\nweight = 100 g/m2\n"
-	    "thickness = 0.3 mm\nmodulus_warp = 1e20\nmodulus_weft = 1e20\nshear_modulus = 0\n"
+	    "thickness = 0.3 mm\nmodulus_warp = 1e20 Pa\nmodulus_weft = 1e20 Pa\nshear_modulus = 0\n"
 	    "bending_warp = 0\nbending_weft = 0\n");
 	expect(&r, 2, "stiff.scene:3: ", "dt = auto: a step of");
 	assert_non_null(strstr(r.err, "steps to cover the duration (1 s); expected at most 1e+09"));
@@ -351,7 +351,7 @@ frames_flushed_on_wall_time(void **state)
 
 	(void)state;
 	/* a frame every step */
-	parse_text(&sc, SIM "output_rate = 1e6\n" CLOTH);
+	parse_text(&sc, SIM "output_rate = 1e6 Hz\n" CLOTH);
 	st = new_stepper(&sc);
 	snprintf(path, sizeof path, "%s/clock.drr", dir);
 	if (record_open(&rec, path, st, 1000, 0, false, &err) != 0)
@@ -404,7 +404,7 @@ record_clocked(const char *name, bool flushing, size_t *len, long *mid)
 	int k;
 
 	*mid = -1;
-	parse_text(&sc, "[simulation]\nduration = 6 ms\noutput_rate = 1e6\n" CLOTH
+	parse_text(&sc, "[simulation]\nduration = 6 ms\noutput_rate = 1e6 Hz\n" CLOTH
 	    "[plane]\npoint = 0 -2 0 mm\n");
 	st = new_stepper(&sc);
 	snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -495,7 +495,7 @@ kill_9_keeps_frames(void **state)
 	snprintf(path, sizeof path, "%s/killed.drr", dir);
 	snprintf(args, sizeof args, "'%s' run --headless --record '%s' '%s' >/dev/null 2>&1 & "
 	    "echo $! >'%s/pid'", DRAPE, path, dir_write_text("slow-frames.scene",
-	    "[simulation]\nduration = 2 s\noutput_rate = 10\n[cloth]\nnodes = 25 25\n"
+	    "[simulation]\nduration = 2 s\noutput_rate = 10 Hz\n[cloth]\nnodes = 25 25\n"
 	    "spacing = 10 mm\norigin = -0.12 0.15 -0.12 m\norientation = +x +z\n"
 	    "weight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n"
 	    "modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n"
@@ -538,7 +538,7 @@ export_exits_2(void **state)
 
 	(void)state;
 	snprintf(args, sizeof args, "run --headless --record '%s/whole.drr' '%%s'", dir);
-	drape_on(&r, args, "whole.scene", SIM "output_rate = 1000\n" CLOTH);
+	drape_on(&r, args, "whole.scene", SIM "output_rate = 1000 Hz\n" CLOTH);
 	assert_int_equal(r.status, 0);
 	snprintf(path, sizeof path, "%s/whole.drr", dir);
 	buf = read_whole(path, &len);
@@ -572,7 +572,7 @@ export_exits_2(void **state)
 static void
 nul_line_and_cut_header(void **state)
 {
-	static const char text[] = "[simulation]\nduration = 1\n\n\n\n\n\nname = a\0b\n";
+	static const char text[] = "[simulation]\nduration = 1 s\n\n\n\n\n\nname = a\0b\n";
 	struct result r;
 	char args[1200];
 	unsigned char *buf;
@@ -617,22 +617,22 @@ scale_refused_at_parse(void **state)
 	expect(&r, 2, "scale.scene:13: ", "with this mesh the cloth and the obstacles span "
 	    "2e+07 cubes of 0.01 m (the cloth's spacing) along x; expected at most 16777216 "
 	    "along an axis and 9.007e+15 in all (the spatial hash's bound)");
-	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9\n", SIM CLOTH);
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9 m\n", SIM CLOTH);
 	drape_on(&r, "run --headless '%s'", "cell.scene", text);
 	expect(&r, 2, "cell.scene:15: ", "cell: the cloth spans 3e+07 cubes of 1e-09 m along x");
 	/* the modes that fill no hash are not held to its bound (collide_uses_hash) */
-	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9\nbroad = bvh\n",
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9 m\nbroad = bvh\n",
 	    SIM CLOTH);
 	drape_on(&r, "run --headless '%s'", "cell.scene", text);
 	if (r.status != 0)
 		fail_msg("bvh: status %d: %s", r.status, r.err);
-	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9\nbroad = brute\n",
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-9 m\nbroad = brute\n",
 	    SIM CLOTH);
 	drape_on(&r, "run --headless '%s'", "cell.scene", text);
 	if (r.status != 0)
 		fail_msg("brute: status %d: %s", r.status, r.err);
-	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-6\n", SIM
-	    "[cloth]\nnodes = 4096 1\nspacing = 1 m\norigin = -2000 0 -2000\n"
+	snprintf(text, sizeof text, "%s[collision]\nself = on\ncell = 1e-6 m\n", SIM
+	    "[cloth]\nnodes = 4096 1\nspacing = 1 m\norigin = -2000 0 -2000 m\n"
 	    "orientation = +x +y\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 0\nbending_weft = 0\n");
@@ -641,7 +641,7 @@ scale_refused_at_parse(void **state)
 	drape_on(&r, "run --headless '%s'", "far.scene", SIM CLOTH "origin = 0 2e6 0 m\n");
 	expect(&r, 2, "far.scene:13: ", "origin: expected coordinates of at most 1e+06 m either "
 	    "way, got '0 2e6 0 m'");
-	drape_on(&r, "run --headless '%s'", "far.scene", MESH("tri.obj") "offset = 0 -1e300 0\n");
+	drape_on(&r, "run --headless '%s'", "far.scene", MESH("tri.obj") "offset = 0 -1e300 0 m\n");
 	expect(&r, 2, "far.scene:15: ", "offset: expected coordinates of at most 1e+06 m");
 	/* the same mesh at a sane scale runs */
 	drape_on(&r, "run --headless '%s'", "scale.scene", MESH("tri.obj") "scale = 0.5\n"
@@ -801,19 +801,19 @@ values_past_their_unit(void **state)
 	expect(&r, 2, "ok.scene:1: dt = auto: ", "cannot choose a time step (the stiffness bound "
 	    "is inf rad/s)");
 	drape_on(&r, "run --headless '%s'", "normal.scene", SIM CLOTH "[plane]\n"
-	    "point = 0 -1 0\nnormal = 0 1e-310 0\n");
+	    "point = 0 -1 0 m\nnormal = 0 1e-310 0\n");
 	expect(&r, 2, "normal.scene:15: ", "normal: expected a direction, a vector with a "
 	    "component of at least 2.22507e-308 either way, got '0 1e-310 0'");
 	/* the smallest normal number is a direction */
 	drape_on(&r, "run --headless '%s'", "normal.scene", SIM CLOTH "[plane]\n"
-	    "point = 0 -1 0\nnormal = 0 2.3e-308 0\n");
+	    "point = 0 -1 0 m\nnormal = 0 2.3e-308 0\n");
 	if (r.status != 0)
 		fail_msg("status %d: %s", r.status, r.err);
 	/* issue 29, 12: "expected a number" once, the reason in parentheses */
-	drape_on(&r, "run --headless '%s'", "nan.scene", "[simulation]\nduration = 1\n"
+	drape_on(&r, "run --headless '%s'", "nan.scene", "[simulation]\nduration = 1 s\n"
 	    "tolerance = abc\n" CLOTH);
 	expect(&r, 2, "nan.scene:3: ", "tolerance: expected a number, got 'abc'\n");
-	drape_on(&r, "run --headless '%s'", "nan.scene", "[simulation]\nduration = 1\n"
+	drape_on(&r, "run --headless '%s'", "nan.scene", "[simulation]\nduration = 1 s\n"
 	    "tolerance = 1 2\n" CLOTH);
 	expect(&r, 2, "nan.scene:3: ", "tolerance: expected a number, got '1 2' (more than 1 "
 	    "number)\n");
@@ -821,9 +821,9 @@ values_past_their_unit(void **state)
 	    "spacing = 1,5 mm\n");
 	expect(&r, 2, "comma.scene:5: ", "spacing: expected a length (m, cm, mm, um), got "
 	    "'1,5 mm'\n");
-	drape_on(&r, "run --headless '%s'", "origin.scene", SIM CLOTH "origin = 1 2\n");
-	expect(&r, 2, "origin.scene:13: ", "origin: expected numbers for a length (m, cm, mm, "
-	    "um), got '1 2' (2 of the 3 numbers)\n");
+	drape_on(&r, "run --headless '%s'", "origin.scene", SIM CLOTH "origin = 1 2 m\n");
+	expect(&r, 2, "origin.scene:13: ", "origin: expected 3 numbers and the unit of a length "
+	    "(m, cm, mm, um), got '1 2 m' (2 numbers, not 3)\n");
 }
 
 /* Issue 29, 7: every integer option is read with its range: --every at
@@ -979,7 +979,7 @@ output_over_an_input(void **state)
 	(void)state;
 	dir_write_text("in.scene", scene);
 	dir_write_text("m.obj", tri_obj);
-	dir_write_text("mesh.scene", MESH("m.obj") "offset = 0 -1 0\n");
+	dir_write_text("mesh.scene", MESH("m.obj") "offset = 0 -1 0 m\n");
 	snprintf(a, sizeof a, "%s/in.scene", dir);
 	snprintf(b, sizeof b, "%s/link.scene", dir);
 	assert_int_equal(link(a, b), 0);
@@ -1131,7 +1131,7 @@ full_disk_writers_fail(void **state)
 	char args[2000];
 
 	(void)state;
-	dir_write_text("trace.scene", SIM "output_rate = 10000\n" CLOTH);
+	dir_write_text("trace.scene", SIM "output_rate = 10000 Hz\n" CLOTH);
 	dir_write_text("old.tsv", old);
 	snprintf(args, sizeof args, "run --headless --trace '%s/old.tsv' '%s/trace.scene'", dir,
 	    dir);
@@ -1241,7 +1241,7 @@ summary_and_replay_say_what_happened(void **state)
 	    "error)"));
 	/* and a blow-up */
 	snprintf(args, sizeof args, "run --headless --dt 5ms --record '%s/blow.drr' '%%s'", dir);
-	drape_on(&r, args, "stiff.scene", "[simulation]\nduration = 1\n[cloth]\nnodes = 6 6\n"
+	drape_on(&r, args, "stiff.scene", "[simulation]\nduration = 1 s\n[cloth]\nnodes = 6 6\n"
 	    "spacing = 1 cm\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 30 MPa\n"
 	    "modulus_weft = 30 MPa\nshear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n"
 	    "[pin]\nnodes = 0 0\n");
@@ -1313,8 +1313,8 @@ export_signal_removes_temporaries(void **state)
 
 	(void)state;
 	snprintf(args, sizeof args, "run --headless --record '%s/sig.drr' '%%s'", dir);
-	drape_on(&r, args, "sig.scene", "[simulation]\nduration = 0.2\ndt = 2 ms\n"
-	    "integrator = fast\noutput_rate = 500\n[cloth]\nnodes = 100 100\nspacing = 10 mm\n"
+	drape_on(&r, args, "sig.scene", "[simulation]\nduration = 0.2 s\ndt = 2 ms\n"
+	    "integrator = fast\noutput_rate = 500 Hz\n[cloth]\nnodes = 100 100\nspacing = 10 mm\n"
 	    "weight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\n"
 	    "shear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n");
 	assert_int_equal(r.status, 0);
@@ -1407,7 +1407,7 @@ fast_substeps_bounded(void **state)
 
 	drape_on(&r, "run --headless --summary json '%s'", "taut.scene", "[simulation]\n"
 	    "duration = 50 ms\nintegrator = fast\n[cloth]\nnodes = 4 4\nspacing = 1 cm\n"
-	    "weight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1e15\nmodulus_weft = 1e15\n"
+	    "weight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1e15 Pa\nmodulus_weft = 1e15 Pa\n"
 	    "shear_modulus = 0\nbending_warp = 1 uN*m\nbending_weft = 1 uN*m\n[move]\n"
 	    "nodes = 0 0\nvelocity = 1 0 0 m/s\n");
 	assert_non_null(at = strstr(r.out, "\"steps\": "));

@@ -97,7 +97,7 @@ spring_frequency(void **state)
 	int node, crossings = 0;
 
 	(void)state;
-	parse_text(&sc, "[simulation]\nduration = 1\ngravity = 0\n"
+	parse_text(&sc, "[simulation]\nduration = 1 s\ngravity = 0\n"
 	    "[cloth]\nnodes = 2 2\nspacing = 1 cm\nweight = 100 g/m2\nthickness = 0.5 mm\n"
 	    "modulus_warp = 2 MPa\nmodulus_weft = 2 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 0\nbending_weft = 0\n[pin]\nnodes = 0 *\n");
@@ -149,11 +149,11 @@ observed_order_with(const char *integrator, const char *extra, const char *dt1,
 	size_t n = 6 * 16;
 
 	/* SWINGX's text has the duration, then dt, then the integrator. */
-	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1", "%s"), dt1, integrator, extra);
+	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1 s", "%s"), dt1, integrator, extra);
 	a = positions_after(text);
-	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1", "%s"), dt2, integrator, extra);
+	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1 s", "%s"), dt2, integrator, extra);
 	b = positions_after(text);
-	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1", "%s"), dt4, integrator, extra);
+	snprintf(text, sizeof text, SWINGX("%s", "%s", "0.1 s", "%s"), dt4, integrator, extra);
 	c = positions_after(text);
 	p = log2(distance(a, b, n) / distance(b, c, n));
 	print_message("%-6s observed order %.3f (differences %.3e, %.3e)\n", integrator, p,
@@ -222,8 +222,8 @@ rk4_energy_error_order(void **state)
 	double d1, d2;
 
 	(void)state;
-	d1 = energy_error("rk4", "0.5 ms", "0.3");
-	d2 = energy_error("rk4", "0.25 ms", "0.3");
+	d1 = energy_error("rk4", "0.5 ms", "0.3 s");
+	d2 = energy_error("rk4", "0.25 ms", "0.3 s");
 	print_message("rk4 worst energy error over 0.3 s: %.3e J at 0.5 ms, %.3e J at 0.25 ms, "
 	    "ratio %.2f\n", d1, d2, d1 / d2);
 	/* 16 = 2^4, within the same +-0.3 on the order as above */
@@ -234,7 +234,7 @@ rk4_energy_error_order(void **state)
  * symplectic Euler keeps a nearby energy and its error oscillates without
  * growing over 1e5 steps (RK4's drifts steadily on the same run: printed). */
 #define DRUM(integrator) \
-	"[simulation]\nduration = 100\ndt = 0.5 ms\nintegrator = " integrator "\n" \
+	"[simulation]\nduration = 100 s\ndt = 0.5 ms\nintegrator = " integrator "\n" \
 	"[cloth]\nnodes = 5 5\nspacing = 5 cm\nweight = 100 g/m2\nthickness = 1 mm\n" \
 	"modulus_warp = 10 kPa\nmodulus_weft = 8 kPa\nshear_modulus = 1 kPa\n" \
 	"bending_warp = 20 uN*m\nbending_weft = 10 uN*m\n" \
@@ -290,10 +290,10 @@ dopri5_tolerance(void **state)
 	size_t n = 6 * 16;
 
 	(void)state;
-	ref = positions_after(SWING("rk4", "0.01 ms", "0.1"));
+	ref = positions_after(SWING("rk4", "0.01 ms", "0.1 s"));
 	/* dt is DOPRI5's largest step: set it loose so the tolerance rules. */
-	loose = positions_after(SWINGX("dopri5", "0.1 s", "0.1", "tolerance = 1e-4\n"));
-	tight = positions_after(SWINGX("dopri5", "0.1 s", "0.1", "tolerance = 1e-8\n"));
+	loose = positions_after(SWINGX("dopri5", "0.1 s", "0.1 s", "tolerance = 1e-4\n"));
+	tight = positions_after(SWINGX("dopri5", "0.1 s", "0.1 s", "tolerance = 1e-8\n"));
 	e_loose = distance(loose, ref, n);
 	e_tight = distance(tight, ref, n);
 	print_message("dopri5 error against rk4 at 0.01 ms: %.3e at tol 1e-4, %.3e at 1e-8\n",
@@ -419,7 +419,7 @@ jacobian_matches_forces(void **state)
 	unsigned seed = 12345;
 
 	(void)state;
-	parse_text(&sc, SWING("rk4", "1 ms", "0.01"));
+	parse_text(&sc, SWING("rk4", "1 ms", "0.01 s"));
 	if (network_build(&net, &sc, &err) != 0)
 		fail_msg("%s", err.msg);
 	assert_int_equal(jacobian_init(&jc, &net.fo), 0);
@@ -533,7 +533,7 @@ implicit_stable_past_explicit_limit(void **state)
 	int r = 0;
 
 	(void)state;
-	parse_text(&sc, SWING("rk4", "20 ms", "2"));
+	parse_text(&sc, SWING("rk4", "20 ms", "2 s"));
 	st = new_stepper(&sc);
 	print_message("h*omega = %.1f\n", report_of(st).dt_set * report_of(st).omega);
 	assert_true(report_of(st).dt_set * report_of(st).omega > 10);

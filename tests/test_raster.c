@@ -106,6 +106,31 @@ triangle_fills_expected_cells(void **state)
 }
 
 /* A square of side s in metres covers twice as many columns as rows. */
+/* Issue 30: without colour the cloth and a box it lay on took the same
+ * characters; the obstacles have their own, and the floor its dots. */
+static void
+obstacles_have_their_own_characters(void **state)
+{
+	struct raster r;
+	struct camera cam;
+	const char *c;
+	char cloth, solid;
+
+	(void)state;
+	for (c = RASTER_SOLID_RAMP; *c != '\0'; c++)
+		if (strchr(RASTER_RAMP, *c) != NULL || *c == '.' || *c == ' ')
+			fail_msg("'%c' is the cloth's, the floor's or a blank", *c);
+	front(&r, &cam, VIEW_FRONT);
+	raster_triangle(&r, &cam, at_cell(2, 2), at_cell(10, 2), at_cell(2, 6), CELL_CLOTH);
+	raster_triangle(&r, &cam, at_cell(12, 2), at_cell(20, 2), at_cell(12, 6), CELL_SOLID);
+	cloth = raster_at(&r, 3, 3);
+	solid = raster_at(&r, 13, 3);
+	assert_non_null(strchr(RASTER_RAMP, cloth));
+	assert_non_null(strchr(RASTER_SOLID_RAMP, solid));
+	assert_int_equal(r.kind[3 * r.w + 13], CELL_SOLID);
+	raster_free(&r);
+}
+
 static void
 cells_are_twice_as_tall(void **state)
 {
@@ -196,8 +221,8 @@ presets_by_name(void **state)
 	assert_int_equal(view_preset_from_name("back"), -1);
 }
 
-#define SMALL "[simulation]\nduration = 0.2\ndt = 0.2 ms\n[cloth]\nnodes = 6 6\n" \
-	"spacing = 20 mm\norigin = -0.05 0.05 -0.05\norientation = +x +z\nweight = 100 g/m2\n" \
+#define SMALL "[simulation]\nduration = 0.2 s\ndt = 0.2 ms\n[cloth]\nnodes = 6 6\n" \
+	"spacing = 20 mm\norigin = -0.05 0.05 -0.05 m\norientation = +x +z\nweight = 100 g/m2\n" \
 	"thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n" \
 	"bending_warp = 0\nbending_weft = 0\n[plane]\npoint = 0 0 0\n"
 
@@ -269,6 +294,7 @@ main(void)
 		cmocka_unit_test(point_projects_to_cell),
 		cmocka_unit_test(triangle_fills_expected_cells),
 		cmocka_unit_test(cells_are_twice_as_tall),
+		cmocka_unit_test(obstacles_have_their_own_characters),
 		cmocka_unit_test(nearer_hides_farther),
 		cmocka_unit_test(presets_by_name),
 		cmocka_unit_test(snapshot_prints_the_grid),

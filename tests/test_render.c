@@ -343,8 +343,8 @@ png_rejects_bad_sizes_and_writes_whole(void **state)
 /* ---- strain colouring ---- */
 
 static const char SHEET[] =
-	"[simulation]\nduration = 1\ndt = auto\n"
-	"[cloth]\nnodes = 6 6\nspacing = 10 mm\norigin = -0.025 0 -0.025\n"
+	"[simulation]\nduration = 1 s\ndt = auto\n"
+	"[cloth]\nnodes = 6 6\nspacing = 10 mm\norigin = -0.025 0 -0.025 m\n"
 	"orientation = +x +z\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	"modulus_warp = 0.5 MPa\nmodulus_weft = 0.5 MPa\nshear_modulus = 10 kPa\n"
 	"bending_warp = 0\nbending_weft = 0\n";
@@ -550,7 +550,7 @@ legend_clear_of_the_name(void **state)
 	struct picture_band b;
 	struct picture_frame fr;
 	struct picture_opts po = { 480, 120, COLOUR_WARP, 0.05, "a scene of a rather long name",
-		1 };
+		1, 0 };
 	unsigned char *rgb;
 	int w, h, y, s = 2, coloured = 0, x;
 
@@ -651,7 +651,9 @@ braille_dots_of_a_triangle(void **state)
 	    (struct rgb){ 255, 255, 255 }, CELL_SOLID);
 	glyphs_convert(&g);
 	assert_int_equal(g.kind[1 * 10 + 1], CELL_SOLID);
-	assert_int_equal(g.bits[1 * 10 + 1], 0xFF);
+	/* hatched, every other row of pixels (issue 30: without colour a
+	 * box and the cloth on it took the same dots): dots 1, 3, 4, 6 */
+	assert_int_equal(g.bits[1 * 10 + 1], 0x2D);
 	/* half blocks: 1 x 2 pixels a cell */
 	assert_int_equal(glyphs_resize(&g, GLYPHS_BLOCKS, 10, 5), 0);
 	assert_int_equal(g.im.h, 10);
@@ -661,10 +663,52 @@ braille_dots_of_a_triangle(void **state)
 	glyphs_convert(&g);
 	assert_int_equal(g.cp[0], 0x2588);		/* both halves */
 	assert_int_equal(g.cp[9], ' ');
+	/* an obstacle's cells are upper halves: hatched */
+	flat_triangle(&g.im, &cam, v3(-1, 1, 0.5), v3(1, 1, 0.5), v3(-1, -1, 0.5),
+	    (struct rgb){ 255, 255, 255 }, CELL_SOLID);
+	glyphs_convert(&g);
+	assert_int_equal(g.kind[0], CELL_SOLID);
+	assert_int_equal(g.cp[0], 0x2580);
 	glyphs_free(&g);
 }
 
 /* ---- through the binary ---- */
+
+/* The cloth's cells (its ramp and the marks) in a text snapshot. */
+static int
+cloth_cells(const char *out)
+{
+	int n = 0;
+
+	for (; *out != '\0'; out++)
+		n += strchr(RASTER_RAMP "oX", *out) != NULL && *out != '.';
+	return n;
+}
+
+/* Issue 30: at the strip's end its pile was a speck in the scene's
+ * framing; a snapshot frames the cloth in the frames drawn by default
+ * (--frame scene: as before). */
+static void
+snapshot_frames_the_cloth(void **state)
+{
+	struct result r;
+	int cloth, scene;
+
+	(void)state;
+	drape(&r, "snapshot --time 3 --size 80x24 '" TOP_SRCDIR "/replays/strip.drr'");
+	assert_int_equal(r.status, 0);
+	cloth = cloth_cells(r.out);
+	drape(&r, "snapshot --time 3 --size 80x24 --frame scene '" TOP_SRCDIR
+	    "/replays/strip.drr'");
+	assert_int_equal(r.status, 0);
+	scene = cloth_cells(r.out);
+	print_message("the strip's pile at 3 s: %d cells framed, %d in the scene's view\n",
+	    cloth, scene);
+	assert_true(cloth >= 3 * scene);
+	drape(&r, "snapshot --frame all '" TOP_SRCDIR "/replays/strip.drr'");
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--frame 'all': expected cloth or scene"));
+}
 
 static void
 same_frame_same_bytes(void **state)
@@ -692,18 +736,19 @@ same_frame_same_bytes(void **state)
 	assert_memory_equal(pa, pb, la);
 	png_read(pa, la, &rd);
 	assert_int_equal(rd.w, 160);
-	assert_true(rd.h > 120);	/* the frame and the legend's band */
+	assert_int_equal(rd.h, 120);	/* the frame and the legend's band, as asked */
 	free(rd.rgb);
 	free(pa);
 	free(pb);
 	/* a filmstrip of three frames, side by side */
-	snprintf(args, sizeof args, "snapshot --png '%s' --strip 0,0.1,0.2 --size 100x80 "
+	snprintf(args, sizeof args, "snapshot --png '%s' --strip 0,0.1,0.2 --size 308x80 "
 	    "--color contact '" TOP_SRCDIR "/tests/data/tablecloth-rk4.drr'", a);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
 	pa = slurp_file(a, &la);
 	png_read(pa, la, &rd);
 	assert_int_equal(rd.w, 3 * 100 + 2 * PICTURE_GAP);
+	assert_int_equal(rd.h, 80);
 	free(rd.rgb);
 	free(pa);
 	/* a scene, stepped to a time */
@@ -716,6 +761,60 @@ same_frame_same_bytes(void **state)
 	assert_int_equal(rd.w, 64);
 	free(rd.rgb);
 	free(pa);
+}
+
+/* Issue 30: the strain scale changed between pictures of one run (each
+ * took the round number above the largest strain of the frames it drew),
+ * so two pictures could not be compared. A replay's pictures now share
+ * the scale of its whole run by default: the legends of two times are
+ * the same pixels (the frames' are not); --range still fixes it. */
+static void
+one_scale_for_a_replay(void **state)
+{
+	static const char *const times[2] = { "0.1", "1.0" };
+	struct result r;
+	char args[1200], path[2][200];
+	struct png_image im[2];
+	unsigned char *buf, *buf1;
+	size_t len, len1, row;
+	int k, y, differ = 0;
+
+	(void)state;
+	for (k = 0; k < 2; k++) {
+		snprintf(path[k], sizeof path[k], "%s/scale%d.png", dir, k);
+		snprintf(args, sizeof args, "snapshot --png '%s' --time %s --color strain "
+		    "--frame scene --size 480x400 '" TOP_SRCDIR "/replays/tablecloth.drr'",
+		    path[k], times[k]);
+		drape(&r, args);
+		assert_int_equal(r.status, 0);
+		buf = slurp_file(path[k], &len);
+		png_read(buf, len, &im[k]);
+		free(buf);
+		assert_int_equal(im[k].w, 480);
+		assert_int_equal(im[k].h, 400);
+	}
+	row = 3 * (size_t)im[0].w;
+	/* the band's last 40 rows: the legend, its scale and its labels */
+	for (y = 360; y < 400; y++)
+		if (memcmp(im[0].rgb + row * (size_t)y, im[1].rgb + row * (size_t)y, row) != 0)
+			fail_msg("the legends of t = 0.1 s and 1.0 s differ at row %d", y);
+	for (y = 0; y < 300; y++)
+		differ += memcmp(im[0].rgb + row * (size_t)y, im[1].rgb + row * (size_t)y, row) != 0;
+	assert_true(differ > 0);
+	free(im[0].rgb);
+	free(im[1].rgb);
+	/* --range in percent: the run's round scale, 50 % (it was taken as a
+	 * bare strain, 5000 %), gives the default's bytes */
+	snprintf(args, sizeof args, "snapshot --png '%s' --time 0.1 --color strain --range 50 "
+	    "--frame scene --size 480x400 '" TOP_SRCDIR "/replays/tablecloth.drr'", path[1]);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	buf = slurp_file(path[0], &len);
+	buf1 = slurp_file(path[1], &len1);
+	assert_int_equal(len, len1);
+	assert_memory_equal(buf, buf1, len);
+	free(buf);
+	free(buf1);
 }
 
 static void
@@ -758,8 +857,9 @@ bad_arguments(void **state)
 		fail_msg("drape %s: stderr '%s', expected '%s'", args, r.err, want); \
 } while (0)
 	TRY(2, "--size '8x8'", "snapshot --png '%s' --size 8x8 %s", out, rp);
-	TRY(2, "16 to 4096 pixels", "snapshot --png '%s' --size 10x100 %s", out, rp);
-	TRY(2, "--size '5000x100'", "snapshot --png '%s' --size 5000x100 %s", out, rp);
+	TRY(2, "from 16 to 16384 pixels wide", "snapshot --png '%s' --size 10x100 %s", out, rp);
+	TRY(2, "--size '20000x100'", "snapshot --png '%s' --size 20000x100 %s", out, rp);
+	TRY(2, "from 16 to 4096 high", "snapshot --png '%s' --size 100x5000 %s", out, rp);
 	TRY(2, "--size '300x'", "snapshot --png '%s' --size 300x %s", out, rp);
 	TRY(2, "1 to 1000 characters", "snapshot --size 2000x10 %s", rp);
 	TRY(2, "--strip '0,,1'", "snapshot --png '%s' --strip 0,,1 %s", out, rp);
@@ -770,7 +870,9 @@ bad_arguments(void **state)
 	TRY(2, "need --png", "snapshot --strip 0,0.1 %s", rp);
 	TRY(2, "one --step or one --time", "snapshot --png '%s' --step 5 --strip 0,0.1 %s", out, rp);
 	TRY(2, "--frames '1'", "snapshot --png '%s' --frames 1 %s", out, rp);
-	TRY(2, "wider than 16384", "snapshot --png '%s' --frames 40 --size 1000x100 %s", out, rp);
+	TRY(2, "wider than 16384", "snapshot --png '%s' --frames 40 %s", out, rp);
+	TRY(2, "40 frames side by side leave each under 16 pixels wide", "snapshot --png '%s' "
+	    "--frames 40 --size 500x100 %s", out, rp);
 	TRY(2, "--color 'stress'", "snapshot --png '%s' --color stress %s", out, rp);
 	TRY(2, "--range is the scale", "snapshot --png '%s' --range 5 %s", out, rp);
 	TRY(2, "not with --png", "snapshot --png '%s' --unicode %s", out, rp);
@@ -854,6 +956,8 @@ main(void)
 		cmocka_unit_test(time_labels_say_the_time),
 		cmocka_unit_test(braille_dots_of_a_triangle),
 		cmocka_unit_test(same_frame_same_bytes),
+		cmocka_unit_test(snapshot_frames_the_cloth),
+		cmocka_unit_test(one_scale_for_a_replay),
 		cmocka_unit_test(unicode_snapshot),
 		cmocka_unit_test(bad_arguments),
 		cmocka_unit_test(plot_charts),

@@ -5,8 +5,10 @@
  * and a state or replay that does not match is refused;
  * and, through the binary: info, events --node, PC2 export, resume, a
  * SIGTERM mid-run, bad arguments, and the shipped replays. */
+#include <math.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include "frame_codec.h"
@@ -28,7 +30,7 @@
 
 static const char tiny_scene[] =
     "# A 4 x 4 cloth dropped onto the floor: a small replay for the tests.\n"
-    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200\n" TINY_CLOTH;
+    "[simulation]\nname = tiny\nduration = 25 ms\ndt = auto\noutput_rate = 200 Hz\n" TINY_CLOTH;
 
 #define KEY_EVERY 40
 
@@ -64,7 +66,7 @@ path_in_dir(char *out, size_t len, const char *name)
  * are several and its contacts with the floor and itself many. */
 static const char tiny_fast_scene[] =
     "[simulation]\nname = tiny-fast\nduration = 0.3 s\ndt = 5 ms\nintegrator = fast\n"
-    "output_rate = 200\n" TINY_CLOTH;
+    "output_rate = 200 Hz\n" TINY_CLOTH;
 
 static void record_text_p(struct truth *tr, const char *path, const char *text, int key_every,
     double precision);
@@ -862,7 +864,8 @@ digest_mismatch(void **state)
 			key = (long)i;
 	}
 	assert_true(ndigest >= 4 && second > 0 && key > 0);
-	lo = (long)r.chunk[second].first_step;
+	/* as shown: the step from state k to k + 1 is step k + 1 */
+	lo = step_shown((long)r.chunk[second].first_step);
 	hi = lo + (long)r.chunk[second].count - 1;
 	snprintf(steps, sizeof steps, "the events of steps %ld to %ld are unavailable", lo, hi);
 	read_tampered(buf, len, &tr, &nok, &nout, why, sizeof why);
@@ -907,7 +910,7 @@ digest_mismatch(void **state)
 		}
 		free(text);
 		for (i = 0; i < tr.nev; i++)
-			n += tr.ev[i].step < lo || tr.ev[i].step > hi;
+			n += step_shown(tr.ev[i].step) < lo || step_shown(tr.ev[i].step) > hi;
 		assert_int_equal(inside, 0);
 		assert_int_equal(lines, 1 + n);
 		assert_true(n > 0 && n < tr.nev);
@@ -927,8 +930,9 @@ digest_mismatch(void **state)
 	read_tampered(bad, blen, &tr, &nok, &nout, why, sizeof why);
 	print_message("keyframe moved: %zu chunks exact, %zu unavailable: %s\n", nok, nout, why);
 	assert_true(nok >= 1 && nout >= 2);
-	/* steps 24 to 47 step onto the keyframe at 40 from the one at 0 */
-	assert_non_null(strstr(why, "the events of steps 24 to 47 are unavailable: the state "
+	/* steps 25 to 48 (as shown: from states 24 to 47) step onto the
+	 * keyframe at state 40 from the one at 0 */
+	assert_non_null(strstr(why, "the events of steps 25 to 48 are unavailable: the state "
 	    "recomputed at step 40 is not the keyframe's"));
 	free(bad);
 	replay_close(&r);
@@ -1000,7 +1004,7 @@ resume_every_keyframe_bdf2(void **state)
 {
 	(void)state;
 	resume_every_keyframe_of("[simulation]\nname = tiny-bdf2\nduration = 0.1 s\ndt = auto\n"
-	    "integrator = bdf2\noutput_rate = 50\n" TINY_CLOTH, 5);
+	    "integrator = bdf2\noutput_rate = 50 Hz\n" TINY_CLOTH, 5);
 }
 
 /* What a restore checks: a saved state is taken only whole and only into
@@ -1410,6 +1414,136 @@ cli_precision(void **state)
 	}
 }
 
+/* The lines of an OBJ file that begin with key (such as "vt "), each
+ * parsed as up to 3 numbers into v (3 per line); their count. */
+static size_t
+obj_lines(const char *text, const char *key, double *v, size_t max)
+{
+	const char *p = text;
+	size_t n = 0, len = strlen(key);
+
+	while ((p = strstr(p, key)) != NULL) {
+		if (p == text || p[-1] == '\n') {
+			if (n < max) {
+				v[3 * n] = v[3 * n + 1] = v[3 * n + 2] = NAN;
+				(void)sscanf(p + len, "%lf %lf %lf", &v[3 * n], &v[3 * n + 1],
+				    &v[3 * n + 2]);
+			}
+			n++;
+		}
+		p += len;
+	}
+	return n;
+}
+
+#define SHIPPED_TABLECLOTH TOP_SRCDIR "/replays/tablecloth.drr"
+
+/* Issue 30, Blender: the OBJs had no texture coordinates (which textures
+ * need) nor normals, the obstacles were not exported, and the frames
+ * came at the recorded 50 a second only. The grid's (i, j) give the
+ * texture coordinates, the frames of --obj-seq their normals, --obstacles
+ * the scene's obstacles, and --fps resamples. */
+static void
+cli_export_for_blender(void **state)
+{
+	static double v[3 * 700];
+	struct result r;
+	struct replay rp;
+	struct replay_frames fr;
+	struct drape_err err;
+	char args[2000], path[700], *text;
+	unsigned char *pc2;
+	size_t len, n, i, k, frame, n3;
+	int32_t samples;
+	float f;
+
+	(void)state;
+	snprintf(args, sizeof args, "export '%s' --obj '%s/bl-rest.obj' --obj-seq '%s/bl-seq' "
+	    "--obstacles '%s/bl-obstacles.obj'", SHIPPED_TABLECLOTH, dir, dir, dir);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	/* the rest mesh: a vt per node, node (i, j) of the 25 x 25 grid at
+	 * (i / 24, j / 24); faces name them; no normals */
+	path_in_dir(path, sizeof path, "bl-rest.obj");
+	text = (char *)slurp_file(path, &len);
+	n = obj_lines(text, "vt ", v, 700);
+	assert_int_equal(n, 625);
+	assert_true(v[0] == 0 && v[1] == 0);
+	assert_true(v[3 * 1] == 1.0 / 24 && v[3 * 1 + 1] == 0);
+	assert_true(v[3 * 25] == 0 && v[3 * 25 + 1] == 1.0 / 24);
+	assert_true(v[3 * 624] == 1 && v[3 * 624 + 1] == 1);
+	assert_int_equal(obj_lines(text, "vn ", v, 0), 0);
+	assert_non_null(strstr(text, "\nf 1/1 2/2 27/27\n"));
+	free(text);
+	/* a frame: a unit normal per node, the flat cloth's straight up */
+	snprintf(path, sizeof path, "%s/bl-seq/frame_00000.obj", dir);
+	text = (char *)slurp_file(path, &len);
+	n = obj_lines(text, "vn ", v, 700);
+	assert_int_equal(n, 625);
+	for (i = 0; i < n; i++)
+		assert_double_equal(fabs(v[3 * i + 1]), 1, 1e-9);
+	assert_non_null(strstr(text, "\nf 1/1/1 2/2/2 27/27/27\n"));
+	free(text);
+	/* the obstacles: the box's 8 corners, then the floor, a square on y = 0 */
+	path_in_dir(path, sizeof path, "bl-obstacles.obj");
+	text = (char *)slurp_file(path, &len);
+	assert_non_null(strstr(text, "\no box_43\n"));
+	assert_non_null(strstr(text, "\no plane_47\n"));
+	n = obj_lines(text, "v ", v, 700);
+	assert_int_equal(n, 12);
+	for (i = 0; i < 8; i++) {
+		assert_true(v[3 * i] == 0 || v[3 * i] == 0.14);
+		assert_true(v[3 * i + 1] == 0 || v[3 * i + 1] == 0.12);
+		assert_true(v[3 * i + 2] == -0.08 || v[3 * i + 2] == 0.06);
+	}
+	for (i = 8; i < 12; i++)
+		assert_true(v[3 * i + 1] == 0 && fabs(v[3 * i]) > 1);
+	/* the floor's face turns up (counter-clockwise seen from above) */
+	assert_non_null(strstr(text, "\nf 9 10 11\n"));
+	assert_true((v[3 * 9] - v[3 * 8]) * (v[3 * 10 + 2] - v[3 * 8 + 2]) -
+	    (v[3 * 9 + 2] - v[3 * 8 + 2]) * (v[3 * 10] - v[3 * 8]) < 0);
+	free(text);
+
+	/* --fps 25 of 50 a second: every other frame, exactly */
+	snprintf(args, sizeof args, "export --fps 25 --pc2 '%s/bl25.pc2' '%s'", dir,
+	    SHIPPED_TABLECLOTH);
+	drape(&r, args);
+	assert_int_equal(r.status, 0);
+	if (replay_open(&rp, SHIPPED_TABLECLOTH, &err) != 0)
+		fail_msg("%s", err.msg);
+	n3 = 3 * (size_t)rp.meta.nodes;
+	path_in_dir(path, sizeof path, "bl25.pc2");
+	pc2 = slurp_file(path, &len);
+	memcpy(&samples, pc2 + 28, 4);
+	assert_int_equal(samples, (int32_t)(rp.nframes + 1) / 2);
+	memcpy(&f, pc2 + 24, 4);
+	assert_true(f == 1.0f);
+	for (i = 0, frame = 0; i < rp.nchunks; i++) {
+		if (!replay_is_frames(rp.chunk[i].kind))
+			continue;
+		assert_int_equal(replay_read_frames(&rp, i, &fr, &err), 0);
+		for (k = 0; k < fr.count; k++, frame++)
+			if (frame % 2 == 0)
+				assert_memory_equal(pc2 + 32 + 12 * rp.meta.nodes * (frame / 2),
+				    fr.x + k * n3, n3 * sizeof(float));
+		replay_frames_free(&fr);
+	}
+	free(pc2);
+	replay_close(&rp);
+	/* bad rates */
+	snprintf(args, sizeof args, "export --fps 0 --pc2 '%s/x.pc2' '%s'", dir,
+	    SHIPPED_TABLECLOTH);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	assert_non_null(strstr(r.err, "--fps '0': expected frames a second"));
+	snprintf(args, sizeof args, "export --fps 24fps --pc2 '%s/x.pc2' '%s'", dir,
+	    SHIPPED_TABLECLOTH);
+	drape(&r, args);
+	assert_int_equal(r.status, 2);
+	path_in_dir(path, sizeof path, "x.pc2");
+	assert_int_equal(access(path, F_OK), -1);
+}
+
 static void
 cli_bad(void **state)
 {
@@ -1695,6 +1829,7 @@ main(void)
 		cmocka_unit_test(cli_pc2),
 		cmocka_unit_test(cli_info_damaged),
 		cmocka_unit_test(cli_precision),
+		cmocka_unit_test(cli_export_for_blender),
 		cmocka_unit_test(cli_bad),
 		cmocka_unit_test(cli_sigterm),
 		cmocka_unit_test(cli_events_digest_as_stored),

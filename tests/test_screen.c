@@ -4,6 +4,7 @@
  * width and saying what they should. */
 #include "testutil.h"
 #include "evlog.h"
+#include "pace.h"
 #include "screen.h"
 #include "tui.h"
 
@@ -83,10 +84,10 @@ event_rings(void **state)
 	evlog_free(&log);
 }
 
-#define SCENE_TEXT "[simulation]\nname = small\nduration = 0.01\n[cloth]\nnodes = 4 4\n" \
+#define SCENE_TEXT "[simulation]\nname = small\nduration = 0.01 s\n[cloth]\nnodes = 4 4\n" \
 	"spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\n" \
 	"modulus_weft = 1 MPa\nshear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n" \
-	"[plane]\npoint = 0 -1 0\n[collision]\nself = on\nbroad = grid\nnarrow = ccd\n"
+	"[plane]\npoint = 0 -1 0 m\n[collision]\nself = on\nbroad = grid\nnarrow = ccd\n"
 
 static void
 status_and_panels(void **state)
@@ -114,15 +115,14 @@ status_and_panels(void **state)
 		assert_int_equal(src.step(src.ctx, line, sizeof line), SOURCE_STEPPED);
 	src.state(src.ctx, &s);
 	assert_int_equal(s.step, 7);
-	si = (struct status_info){ &s, 0.25, "paused", 256, "no", NULL };
+	si = (struct status_info){ &s, 0.25, "paused", "1x", "no", NULL };
 	screen_status(line, 80, &si);
 	assert_true(strlen(line) <= 80);
 	assert_non_null(strstr(line, "step 7 "));
-	assert_non_null(strstr(line, "paused"));
-	assert_non_null(strstr(line, "0.25x"));
+	assert_non_null(strstr(line, " 1x (0.25x) paused"));
 	screen_status(line, 150, &si);
 	assert_non_null(strstr(line, "small  t "));
-	assert_non_null(strstr(line, "256 steps/frame"));
+	assert_non_null(strstr(line, "plays at 1x (0.25x) of real time  paused"));
 
 	src.stats(src.ctx, &ss);
 	assert_true(ss.active);
@@ -145,7 +145,8 @@ status_and_panels(void **state)
 	assert_string_equal(t.line[0], "node 5 (i 1, j 1)");
 	assert_non_null(strstr(t.line[3], "f N"));
 	assert_non_null(strstr(t.line[4], "events: 1"));
-	assert_non_null(strstr(t.line[6], "6 n-f     7 -0.500 +0.100"));
+	/* the event of step 6 (from state 6 to 7) is shown as step 7's */
+	assert_non_null(strstr(t.line[6], "7 n-f     7 -0.500 +0.100"));
 	for (k = 0; k < t.n; k++)
 		if (strlen(t.line[k]) > 30 || strchr(t.line[k], '\n') != NULL)
 			fail_msg("node line %d is '%s'", k, t.line[k]);
@@ -163,6 +164,88 @@ status_and_panels(void **state)
 	scene_free(&sc);
 }
 
+/* Issue 30: the TUI plays at real time by default (the tablecloth was
+ * over in 1.5 s), twice or half as fast by + and -, flat out by *; a run
+ * that cannot keep up goes on from where it is. */
+static void
+pace_of_play(void **state)
+{
+	struct pace p;
+	char label[16];
+	int k;
+
+	(void)state;
+	pace_init(&p, 100, 0);
+	pace_label(&p, label, sizeof label);
+	assert_string_equal(label, "1x");
+	assert_double_equal(pace_target(&p, 100.5), 0.5, 0);	/* real time */
+	assert_true(pace_change(&p, 1));
+	pace_anchor(&p, 101, 0.6);
+	pace_label(&p, label, sizeof label);
+	assert_string_equal(label, "2x");
+	assert_double_equal(pace_target(&p, 102), 2.6, 1e-15);
+	for (k = 0; k < 3; k++)
+		assert_true(pace_change(&p, -1));
+	pace_label(&p, label, sizeof label);
+	assert_string_equal(label, "1/4x");
+	for (k = 0; k < 4; k++)
+		assert_true(pace_change(&p, -1));
+	assert_false(pace_change(&p, -1));	/* 1/64x is the slowest */
+	pace_toggle_flat_out(&p);
+	pace_label(&p, label, sizeof label);
+	assert_string_equal(label, "max");
+	assert_true(isinf(pace_target(&p, 200)));
+	assert_true(pace_change(&p, 1));	/* back to its multiple */
+	pace_label(&p, label, sizeof label);
+	assert_string_equal(label, "1/64x");
+	/* 1x, two seconds behind at 0.1 s a frame: anchored where it is */
+	pace_init(&p, 0, 0);
+	pace_keep_up(&p, 2, 0.05, 0.1);
+	assert_double_equal(pace_target(&p, 2), 0.05, 0);
+	pace_keep_up(&p, 2.05, 0.05, 0.1);	/* within a frame: kept */
+	assert_double_equal(pace_target(&p, 2.05), 0.1, 1e-15);
+}
+
+/* Issue 30: the key line was cut mid-word at 80 columns ("v v"): items
+ * fit whole or are left out. */
+static void
+key_line_fits(void **state)
+{
+	static const char *const items[] = { "? help", "q quit", "space run/pause", "+/- speed",
+		"* max", "n step", "arrows rotate", "z/Z zoom", "v view", "Tab panel", "[/] node" };
+	char line[TEXT_WIDTH + 1];
+	size_t i;
+	int w;
+
+	(void)state;
+	for (w = 10; w <= 120; w++) {
+		screen_keys(line, w, items, sizeof items / sizeof items[0]);
+		assert_true((int)strlen(line) <= w);
+		/* every item in it whole, two spaces apart */
+		{
+			char copy[TEXT_WIDTH + 1], *p = copy, *sep;
+
+			snprintf(copy, sizeof copy, "%s", line);
+			while (*p != '\0') {
+				sep = strstr(p, "  ");
+				if (sep != NULL)
+					*sep = '\0';
+				for (i = 0; i < sizeof items / sizeof items[0]; i++)
+					if (strcmp(p, items[i]) == 0)
+						break;
+				if (i == sizeof items / sizeof items[0])
+					fail_msg("width %d: '%s' is no item of '%s'", w, p, line);
+				if (sep == NULL)
+					break;
+				p = sep + 2;
+			}
+		}
+	}
+	screen_keys(line, 80, items, sizeof items / sizeof items[0]);
+	assert_string_equal(line, "? help  q quit  space run/pause  +/- speed  * max  n step  "
+	    "arrows rotate  v view");	/* z/Z zoom left out, a shorter one after it in */
+}
+
 int
 main(void)
 {
@@ -170,6 +253,8 @@ main(void)
 		cmocka_unit_test(layout_by_size),
 		cmocka_unit_test(event_rings),
 		cmocka_unit_test(status_and_panels),
+		cmocka_unit_test(pace_of_play),
+		cmocka_unit_test(key_line_fits),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

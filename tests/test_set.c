@@ -12,10 +12,10 @@
 
 /* The scene, line by line (the numbers matter to the messages). */
 #define L1_16 "[simulation]\nduration = 10 ms\n[cloth]\nnodes = 5 5\nspacing = 10 mm\n" \
-	"origin = -0.02 0 -0.02\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\n" \
+	"origin = -0.02 0 -0.02 m\nweight = 100 g/m2\nthickness = 0.3 mm\nmodulus_warp = 1 MPa\n" \
 	"modulus_weft = 1 MPa\nshear_modulus = 0\nbending_warp = 1 uN*m\nbending_weft = 1 uN*m\n" \
 	"[pin]\nnodes = 0 *\n"
-#define PLANES "[plane]\npoint = 0 -0.1 0\n[plane]\npoint = 0 -0.0003 0\nfriction = 0.1\n"
+#define PLANES "[plane]\npoint = 0 -0.1 0 m\n[plane]\npoint = 0 -0.0003 0 m\nfriction = 0.1\n"
 #define MESH(f) "[mesh]\nfile = " f "\n"
 #define COLLISION "[collision]\nself = on\nbroad = grid\n"
 #define BASE L1_16 PLANES MESH("a.obj") COLLISION	/* planes at lines 16 and 18 */
@@ -102,7 +102,7 @@ number_with_unit(void **state)
 {
 	(void)state;
 	same_as_file("cloth.bending_warp=40 uN*m", "[simulation]\nduration = 10 ms\n[cloth]\n"
-	    "nodes = 5 5\nspacing = 10 mm\norigin = -0.02 0 -0.02\nweight = 100 g/m2\n"
+	    "nodes = 5 5\nspacing = 10 mm\norigin = -0.02 0 -0.02 m\nweight = 100 g/m2\n"
 	    "thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 40 uN*m\nbending_weft = 1 uN*m\n[pin]\nnodes = 0 *\n" PLANES
 	    MESH("a.obj") COLLISION, true);
@@ -112,6 +112,19 @@ number_with_unit(void **state)
 	    "bending_warp: expected a bending rigidity");
 	refused("run --headless", "cloth.spacing=0 mm",
 	    "spacing: expected a length (m, cm, mm, um) greater than 0, got '0 mm'");
+	/* issue 30: a bare number was SI here as in a file (150 kg/m2) */
+	refused("run --headless", "cloth.weight=150", "--set cloth.weight=150: weight: expected a "
+	    "weight per area (g/m2, gsm, mg/cm2, kg/m2) with its unit, such as 'weight = 150 g/m2'; "
+	    "got '150', with no unit");
+	refused("snapshot", "cloth.spacing=10", "spacing: expected a length (m, cm, mm, um) with "
+	    "its unit, such as 'spacing = 10 mm'; got '10', with no unit");
+	refused("check", "plane#2.point=0 -0.5 0", "point: expected 3 numbers and the unit of a "
+	    "length (m, cm, mm, um), such as 'point = 0 0.15 0 m'; got '0 -0.5 0', with no unit");
+	same_as_file("cloth.bending_warp=0", "[simulation]\nduration = 10 ms\n[cloth]\n"
+	    "nodes = 5 5\nspacing = 10 mm\norigin = -0.02 0 -0.02 m\nweight = 100 g/m2\n"
+	    "thickness = 0.3 mm\nmodulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
+	    "bending_warp = 0 N*m\nbending_weft = 1 uN*m\n[pin]\nnodes = 0 *\n" PLANES
+	    MESH("a.obj") COLLISION, true);
 }
 
 static void
@@ -119,7 +132,7 @@ selector(void **state)
 {
 	(void)state;
 	same_as_file("pin.nodes=-1 *", "[simulation]\nduration = 10 ms\n[cloth]\nnodes = 5 5\n"
-	    "spacing = 10 mm\norigin = -0.02 0 -0.02\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "spacing = 10 mm\norigin = -0.02 0 -0.02 m\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n[pin]\nnodes = -1 *\n" PLANES
 	    MESH("a.obj") COLLISION, true);
@@ -163,16 +176,16 @@ sections(void **state)
 {
 	char args[800], a[17], b[17];
 	const char *plain = "[simulation]\nduration = 10 ms\n[cloth]\nnodes = 5 5\n"
-	    "spacing = 10 mm\norigin = -0.02 0 -0.02\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "spacing = 10 mm\norigin = -0.02 0 -0.02 m\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n" PLANES;
 
 	(void)state;
 	/* a repeated section: by its place, and plain only when alone */
-	same_as_file("plane#2.friction=0.5", L1_16 "[plane]\npoint = 0 -0.1 0\n[plane]\n"
-	    "point = 0 -0.0003 0\nfriction = 0.5\n" MESH("a.obj") COLLISION, false);
-	same_as_file("plane#1.friction=0.2", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = 0.2\n"
-	    "[plane]\npoint = 0 -0.0003 0\nfriction = 0.1\n" MESH("a.obj") COLLISION, false);
+	same_as_file("plane#2.friction=0.5", L1_16 "[plane]\npoint = 0 -0.1 0 m\n[plane]\n"
+	    "point = 0 -0.0003 0 m\nfriction = 0.5\n" MESH("a.obj") COLLISION, false);
+	same_as_file("plane#1.friction=0.2", L1_16 "[plane]\npoint = 0 -0.1 0 m\nfriction = 0.2\n"
+	    "[plane]\npoint = 0 -0.0003 0 m\nfriction = 0.1\n" MESH("a.obj") COLLISION, false);
 	refused("run --headless", "plane.friction=0.3", "the scene has 2 [plane] sections "
 	    "(lines 16, 18); expected plane#1.friction to plane#2.friction");
 	refused("run --headless", "plane#3.friction=0.3",
@@ -186,7 +199,7 @@ sections(void **state)
 	    "'%s/plain.scene'", dir);
 	hash_of(args, a);
 	dir_write_text("plain2.scene", "[simulation]\nduration = 10 ms\n[cloth]\nnodes = 5 5\n"
-	    "spacing = 10 mm\norigin = -0.02 0 -0.02\nweight = 100 g/m2\nthickness = 0.3 mm\n"
+	    "spacing = 10 mm\norigin = -0.02 0 -0.02 m\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n" PLANES
 	    "[collision]\nself = on\nbroad = seed\n");
@@ -224,7 +237,7 @@ twice_and_file_lines(void **state)
 	assert_non_null(strstr(r.err, "--set cloth#1.spacing=8mm: cloth.spacing is already set "
 	    "by --set cloth.spacing=9mm"));
 	/* a line added before a bad line of the file: the file's line number */
-	p = dir_write_text("bad.scene", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = -1\n");
+	p = dir_write_text("bad.scene", L1_16 "[plane]\npoint = 0 -0.1 0 m\nfriction = -1\n");
 	snprintf(args, sizeof args, "run --set 'cloth.damping=1 /s' '%s'", p);
 	drape(&r, args);
 	assert_int_equal(r.status, 2);
@@ -245,7 +258,7 @@ check_and_snapshot(void **state)
 	refused("check", "nosuch.key=1", "unknown section [nosuch]");
 	/* a --set bad for the second scene only: refused before the first
 	 * is checked, nothing on stdout (not even the header) */
-	dir_write_text("one-plane.scene", L1_16 "[plane]\npoint = 0 -0.1 0\n" COLLISION);
+	dir_write_text("one-plane.scene", L1_16 "[plane]\npoint = 0 -0.1 0 m\n" COLLISION);
 	snprintf(args, sizeof args, "check --set plane#2.friction=0.2 '%s/base.scene' "
 	    "'%s/one-plane.scene'", dir, dir);
 	drape(&r, args);
@@ -255,7 +268,7 @@ check_and_snapshot(void **state)
 	    strchr(r.err, '\n') != r.err + strlen(r.err) - 1)
 		fail_msg("stderr '%s'; expected one line, drape check: --set plane#2...", r.err);
 	/* a scene's own error still comes in its turn, after the header */
-	dir_write_text("bad-own.scene", L1_16 "[plane]\npoint = 0 -0.1 0\nfriction = -1\n");
+	dir_write_text("bad-own.scene", L1_16 "[plane]\npoint = 0 -0.1 0 m\nfriction = -1\n");
 	snprintf(args, sizeof args, "check --set collision.broad=seed '%s/bad-own.scene'", dir);
 	drape(&r, args);
 	assert_int_equal(r.status, 2);

@@ -84,7 +84,7 @@ overlaps_count_once(void **state)
 }
 
 #define DISC_SCENE(orientation) \
-	"[simulation]\nduration = 1\n[cloth]\nnodes = 31 31\nshape = disc\nspacing = 10 mm\n" \
+	"[simulation]\nduration = 1 s\n[cloth]\nnodes = 31 31\nshape = disc\nspacing = 10 mm\n" \
 	"origin = -0.15 0.255 -0.15 m\norientation = " orientation "\nweight = 150 g/m2\n" \
 	"thickness = 0.55 mm\nmodulus_warp = 0.45 MPa\nmodulus_weft = 0.3 MPa\n" \
 	"shear_modulus = 0\nbending_warp = 0\nbending_weft = 0\n"

@@ -280,11 +280,12 @@ screen_of_a_replay(void **state)
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 1500));
 	src.state(src.ctx, &s);
 	src.position(src.ctx, &p);
-	si = (struct status_info){ &s, 0, "replay", 1, "no", &p };
+	si = (struct status_info){ &s, 0, "replay", "1x", "no", &p };
 	screen_status(line, 80, &si);
 	assert_true(strlen(line) <= 80);
 	assert_non_null(strstr(line, "tablecloth-rk4.drr replay step 1500 "));
 	assert_non_null(strstr(line, "frame 11/18@1359"));
+	assert_non_null(strstr(line, " 1x"));
 	screen_status(line, 150, &si);
 	assert_non_null(strstr(line, "step 1500 of 2265"));
 	assert_int_equal(evlog_init(&log, s.cl->n), 0);
@@ -613,7 +614,7 @@ digest_events_as_stored(void **state)
 	assert_int_equal(nd, 0);
 	src.state(src.ctx, &s);
 	assert_non_null(s.ev_note);
-	assert_non_null(strstr(s.ev_note, "the events of steps 0 to 15 are unavailable: no "
+	assert_non_null(strstr(s.ev_note, "the events of steps 1 to 16 are unavailable: no "
 	    "intact keyframe at or before step 0"));
 	/* steps 48 to 59 from the keyframe at 25: there */
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 55));
@@ -627,6 +628,115 @@ digest_events_as_stored(void **state)
 	source_replay_close(&srs);
 	unlink(dpath);
 	unlink(spath);
+}
+
+#define SHIPPED_TABLECLOTH TOP_SRCDIR "/replays/tablecloth.drr"
+
+/* Issue 30: a seek took 0.3-0.6 s: stepping across a steps chunk's
+ * boundary and back recomputed both chunks' events (a digest's) at every
+ * step, 0.12 s a frame; the last few chunks are kept. */
+static void
+seeks_keep_the_events_recomputed(void **state)
+{
+	struct source src;
+	struct source_replay sr;
+	struct drape_err err;
+	struct source_state s;
+	long before;
+	int k;
+
+	(void)state;
+	if (source_replay_open(&src, &sr, SHIPPED_TABLECLOTH, &err) != 0)
+		fail_msg("%s", err.msg);
+	/* 150 is the first step of a steps chunk: 149's events are the last
+	 * of the one before */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 150));
+	assert_true(src.seek(src.ctx, SOURCE_FRAME_NEXT, 0));
+	before = sr.re.steps;
+	for (k = 0; k < 10; k++)
+		assert_true(src.seek(src.ctx, k % 2 ? SOURCE_FRAME_NEXT : SOURCE_FRAME_PREV, 0));
+	src.state(src.ctx, &s);
+	assert_int_equal(s.step, 152);
+	print_message("10 frames across a chunk's boundary: %ld steps recomputed\n",
+	    sr.re.steps - before);
+	assert_int_equal(sr.re.steps, before);
+	/* where a seek goes, without going */
+	assert_int_equal(src.target(src.ctx, SOURCE_FRAME_NEXT, 0, 150), 152);
+	assert_int_equal(src.target(src.ctx, SOURCE_FRAME_NEXT, 0, 152), 154);
+	assert_int_equal(src.target(src.ctx, SOURCE_LAST, 0, 3), 200);
+	assert_int_equal(src.target(src.ctx, SOURCE_FRAME_PREV, 0, 0), -1);
+	assert_int_equal(src.target(src.ctx, SOURCE_GOTO, 99, 0), 99);
+	src.state(src.ctx, &s);
+	assert_int_equal(s.step, 152);	/* unmoved */
+	source_replay_close(&sr);
+}
+
+/* Issue 30: at step 36 the inspector said "none yet" of a node that
+ * drape events gave events in step 36; and a live run's inspector and
+ * its replay's labelled steps one apart from the status line. The step
+ * from state k to k + 1 is now step k + 1 everywhere: in the inspector,
+ * drape events and the status line once it is done. */
+static void
+step_labels_agree(void **state)
+{
+	struct source src, live;
+	struct source_replay sr;
+	struct source_live lv;
+	struct drape_err err;
+	struct source_state s;
+	struct scene sc;
+	struct stepper *st;
+	struct evlog log;
+	struct text t;
+	const struct contact_event *ev;
+	char why[300];
+	size_t n, i;
+	int k;
+
+	(void)state;
+	if (source_replay_open(&src, &sr, SHIPPED_TABLECLOTH, &err) != 0)
+		fail_msg("%s", err.msg);
+	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
+	st = new_stepper(&sc);
+	source_live(&live, &lv, st);
+	for (k = 1; k <= 37; k++) {
+		assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
+		assert_true(src.seek(src.ctx, SOURCE_GOTO, k));
+		live.state(live.ctx, &s);
+		assert_int_equal(s.step, k);
+		ev = live.events(live.ctx, &n);
+		for (i = 0; i < n; i++)
+			assert_int_equal(step_shown(ev[i].step), k);
+		ev = src.events(src.ctx, &n);
+		for (i = 0; i < n; i++)
+			assert_int_equal(step_shown(ev[i].step), k);
+	}
+	/* node 401: an edge-edge contact (and one with the box) in step 36,
+	 * node-face contacts in 37, three of them listed */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 36));
+	src.state(src.ctx, &s);
+	assert_int_equal(evlog_init(&log, s.cl->n), 0);
+	src.history(src.ctx, &log);
+	text_init(&t, 40);
+	screen_node(&t, &s, 401, NULL, &log);
+	for (i = 0; i < (size_t)t.n && strstr(t.line[i], "36 e-e") == NULL; i++)
+		;
+	if (i == (size_t)t.n)
+		fail_msg("step 36: node 401's edge-edge contact of step 36 is not listed");
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 37));
+	src.state(src.ctx, &s);
+	evlog_clear(&log);
+	src.history(src.ctx, &log);
+	text_init(&t, 40);
+	screen_node(&t, &s, 401, NULL, &log);
+	for (i = 0, k = 0; i < (size_t)t.n; i++)
+		k += strstr(t.line[i], "37 n-f") != NULL;
+	assert_int_equal(k, 3);
+	evlog_free(&log);
+	source_live_free(&lv);
+	stepper_free(st);
+	scene_free(&sc);
+	source_replay_close(&sr);
 }
 
 int
@@ -643,6 +753,8 @@ main(void)
 		cmocka_unit_test(live_run_records),
 		cmocka_unit_test(replay_totals_equal_live),
 		cmocka_unit_test(digest_events_as_stored),
+		cmocka_unit_test(seeks_keep_the_events_recomputed),
+		cmocka_unit_test(step_labels_agree),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

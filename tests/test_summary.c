@@ -307,8 +307,8 @@ same_as_text(const char *what, const char *args)
 	"modulus_warp = 1 MPa\nmodulus_weft = 1 MPa\nshear_modulus = 0\n" \
 	"bending_warp = 1 uN*m\nbending_weft = derived\n"
 #define CUSICK "[simulation]\nduration = 30 ms\n[cloth]\nnodes = 11 11\nshape = disc\n" \
-	"origin = -0.05 0.102 -0.05 m\n" CLOTH "[disc]\ncentre = 0 0.1 0\nradius = 3 cm\n" \
-	"height = 0.1\n[collision]\nself = on\nbroad = seed\n"
+	"origin = -0.05 0.102 -0.05 m\n" CLOTH "[disc]\ncentre = 0 0.1 0 m\nradius = 3 cm\n" \
+	"height = 0.1 m\n[collision]\nself = on\nbroad = seed\n"
 
 static void
 json_equals_text(void **state)
@@ -461,7 +461,7 @@ static void
 blowup_still_prints_its_record(void **state)
 {
 	char args[900];
-	const char *scene = dir_write_text("stiff.scene", "[simulation]\nduration = 1\ndt = 5 ms\n"
+	const char *scene = dir_write_text("stiff.scene", "[simulation]\nduration = 1 s\ndt = 5 ms\n"
 	    "[cloth]\nnodes = 6 6\nspacing = 1 cm\nweight = 100 g/m2\nthickness = 0.3 mm\n"
 	    "modulus_warp = 30 MPa\nmodulus_weft = 30 MPa\nshear_modulus = 0\n"
 	    "bending_warp = 0\nbending_weft = 0\n[pin]\nnodes = 0 0\n");

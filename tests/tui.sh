@@ -10,11 +10,14 @@
 # terminal gone without SIGHUP ends the run as SIGHUP does (exit 129).
 # A blow-up and an error (exit 3 and 1) each named so.
 # At 80 x 24: u cycles the glyphs, c the colouring, with its legend (the
-# scale and its numbers) at the foot of the view.
+# scale and its numbers) at the foot of the view. The pace of play (real
+# time, + - *), the key line's whole items, f following the cloth, and the
+# box's own characters without colour (issue 30).
 # Skipped (77) without tmux. Waits poll the pane, with a timeout.
 set -u
 
 DRAPE=${DRAPE:-src/drape}
+top=$(cd "$(dirname "$0")/.." && pwd)	# the source tree: its scenes and replays
 command -v tmux >/dev/null 2>&1 || { echo "tmux not found: skipped"; exit 77; }
 # the panes' text is checked by byte columns: the ASCII view (the C locale),
 # except where a test asks for a UTF-8 one
@@ -34,12 +37,12 @@ trap 'exit 1' INT TERM HUP PIPE
 # a 10 x 10 cloth falling on a plane, in self-contact
 cat >"$tmp/fall.scene" <<'SCENE'
 [simulation]
-duration = 1
+duration = 1 s
 dt = auto
 [cloth]
 nodes = 10 10
 spacing = 10 mm
-origin = -0.045 0.03 -0.045
+origin = -0.045 0.03 -0.045 m
 orientation = +x +z
 weight = 100 g/m2
 thickness = 0.3 mm
@@ -180,20 +183,21 @@ grep -q $'\e\[3[1-6]m' "$tmp/escapes" && fail "colour with NO_COLOR"
 # a replay recorded headless: keyframes every 100 steps, frames every 155
 "$DRAPE" run --headless --until 0.2 --keyframe-every 100 --record "$tmp/fall.drr" \
 	"$tmp/fall.scene" >"$tmp/out" 2>&1 || { cp "$tmp/out" "$tmp/screen"; fail "recording fall.drr"; }
-# an event a hundred events into the contacts: its step and node
+# an event a hundred events into the contacts: its step and node (step N
+# is the step that ends at the state the status line calls step N)
 read -r ev_step ev_node < <("$DRAPE" events "$tmp/fall.drr" | sed -n '100p' | cut -f1,2)
 last_step=$(sed -n 's/^steps *\([0-9]*\).*/\1/p' "$tmp/out")
 replay_session() {
 	local cols=$1 rows=$2 side=$3
-	echo "== replay at $cols x $rows: step $((ev_step + 1)), node $ev_node"
+	echo "== replay at $cols x $rows: step $ev_step, node $ev_node"
 	tm new-session -d -s t -x "$cols" -y "$rows" "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
 	wait_for 'prompt\$' || return
 	tm send-keys -t t "'$DRAPE' replay '$tmp/fall.drr'; echo EXIT=\$?" Enter
 	wait_for 'fall.drr +replay +step 0 ' || return
 	tm send-keys -t t g
 	wait_for 'go to step: _' || return
-	tm send-keys -t t $(echo "$((ev_step + 1))" | sed 's/./& /g') Enter
-	wait_for "replay +step $((ev_step + 1)) " || return
+	tm send-keys -t t $(echo "$ev_step" | sed 's/./& /g') Enter
+	wait_for "replay +step $ev_step " || return
 	[ "$rows" -lt 40 ] && tm send-keys -t t Tab Tab
 	tm send-keys -t t / $(echo "$ev_node" | sed 's/./& /g') Enter
 	wait_for "node $ev_node \\(i" || return
@@ -218,6 +222,30 @@ replay_session() {
 }
 replay_session 80 24 30
 replay_session 200 60 48
+
+# issue 30: keys typed while a seek runs are one seek to where the last
+# leads (a digest's first seek recomputes its events: up to 0.5 s, and
+# each key made another); at step 36 the inspector lists node 401's
+# contact of step 36, as drape events does (it said "none yet": steps were
+# labelled one apart)
+echo "== replay: a burst of keys, step labels"
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' replay '$top/replays/tablecloth.drr'; echo EXIT=\$?" Enter
+	if wait_for 'tablecloth.drr +replay +step 0 '; then
+		tm send-keys -t t End Home End PPage Home Right Right Right
+		wait_for 'replay +step 6 ' || fail "a burst of keys did not end at step 6"
+		tm send-keys -t t g 3 6 Enter Tab Tab / 4 0 1 Enter
+		wait_for 'node 401 \(i' &&
+			wait_for "\\| *36 e-e " || fail "node 401's contact of step 36 not at step 36"
+		"$DRAPE" events --node 401 --from 36 --to 36 "$top/replays/tablecloth.drr" | cut -f1,3 |
+			grep -qx "$(printf '36\tedge-edge')" ||
+			fail "drape events does not give node 401's contact at step 36"
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+'
+	fi
+	tm kill-session -t t
+fi
 "$DRAPE" replay "$tmp/fall.drr" </dev/null >"$tmp/out" 2>"$tmp/screen"
 rc=$?
 [ $rc -eq 2 ] && grep -q 'not a terminal.*drape info' "$tmp/screen" ||
@@ -348,7 +376,7 @@ fi
 # message on the terminal after q in both
 cat >"$tmp/stiff.scene" <<'SCENE'
 [simulation]
-duration = 1
+duration = 1 s
 dt = 5 ms
 [cloth]
 nodes = 6 6
@@ -453,6 +481,74 @@ glyphs_session() {
 glyphs_session "LC_ALL=C.UTF-8" ""
 glyphs_session "LC_ALL=C.UTF-8" "-C"
 glyphs_session "LC_ALL=C" ""
+
+# issue 30, the first minute: the Quick start's tablecloth was over in
+# 1.5 s. It plays at real time (the status line says 1x), + and - double
+# and halve that, * runs as fast as it can, and the end pauses on the last
+# step; the 80-column key line holds whole items only (it ended "v v")
+echo "== the pace of play, the key line"
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' run '$top/scenes/tablecloth.scene'; echo EXIT=\$?" Enter
+	if wait_for 'E [0-9.e+-]*J 1x.* running'; then
+		[ "$(tail -n 1 "$tmp/screen")" = "? help  q quit  space run/pause  +/- speed  * max  n step  f follow  z/Z zoom" ] ||
+			fail "the key line at 80 columns: '$(tail -n 1 "$tmp/screen")'"
+		tm send-keys -t t +
+		wait_for '^2x real time' && grep -q 'J 2x' "$tmp/screen" || fail "+ did not double the pace"
+		tm send-keys -t t - -
+		wait_for '^1/2x real time' && grep -q 'J 1/2x' "$tmp/screen" || fail "- did not halve it"
+		tm send-keys -t t '*'
+		wait_for '^as fast as it can' && grep -q 'J max' "$tmp/screen" || fail "* is not flat out"
+		# flat out to the end, where it stays
+		wait_for 'step 200 .* end' && wait_for '^end of the run'
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+' && grep -q 'EXIT=0' "$tmp/screen" || fail "the paced run did not exit 0"
+	fi
+	tm kill-session -t t
+fi
+
+# the cloth chars (the ramp's, and the marks) in the view of a 80 x 24
+# screen (its first 49 columns, the separator excluded), from its second row
+view_count() { sed -n '2,23p' "$tmp/screen" | cut -c1-49 | tr -cd "$1" | wc -c; }
+
+# issue 30, the view: at the strip's end its pile was a speck; f follows
+# the cloth, framed. Without colour the box and the cloth took the same
+# characters: the obstacles have their own
+echo "== f follows the cloth; the box's own characters"
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' replay '$top/replays/strip.drr'; echo EXIT=\$?" Enter
+	if wait_for 'strip.drr +replay +step 0 '; then
+		tm send-keys -t t End
+		wait_for 'replay end +step 300 '	# drawn with its view
+		before=$(view_count ':=+*#%@oX-')
+		tm send-keys -t t f
+		if wait_for '^view: following the cloth'; then
+			after=$(view_count ':=+*#%@oX-')
+			echo "cloth cells at the strip's end: $before, following it $after"
+			[ "$after" -ge $((3 * before)) ] || fail "f: $before cloth cells, then $after"
+		fi
+		tm send-keys -t t f
+		wait_for '^view: the whole scene'
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+'
+	fi
+	tm kill-session -t t
+fi
+tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
+if wait_for 'prompt\$'; then
+	tm send-keys -t t "'$DRAPE' run -C --paused '$top/scenes/tablecloth.scene'; echo EXIT=\$?" Enter
+	if wait_for '^\? help'; then
+		cloth=$(view_count ':=+*#%@')
+		solid=$(view_count "',;!|lIH")
+		echo "monochrome at step 0: $cloth cloth cells, $solid box cells"
+		[ "$cloth" -gt 50 ] && [ "$solid" -gt 50 ] ||
+			fail "without colour the box and the cloth do not differ ($cloth, $solid)"
+		tm send-keys -t t q
+		wait_for 'EXIT=[0-9]+'
+	fi
+	tm kill-session -t t
+fi
 
 # not on a terminal
 "$DRAPE" run --until 1ms "$tmp/fall.scene" </dev/null >"$tmp/out" 2>"$tmp/err"

@@ -8,6 +8,7 @@
 #include "contacts.h"
 #include "mg.h"
 #include "obstacle.h"
+#include "stop.h"
 #include "vec3.h"
 
 /* A penalty's stiffness over the inertia m / beta^2 of what it pushes: at
@@ -370,7 +371,7 @@ set_pairs(struct bdf2 *b)
 		int k;
 
 		for (k = 0; k < 4; k++)
-			if (cp->vert[k] < b->col->ncloth && !held(b, cp->vert[k]))
+			if (cp->vert[k] < b->ct->ncloth && !held(b, cp->vert[k]))
 				inv += cp->w[k] * cp->w[k] / cl->mass[cp->vert[k]];
 		memset(&b->pt[i], 0, sizeof b->pt[i]);
 		b->pt[i].k = inv > 0 ? PENALTY_PAIR / (inv * b->beta * b->beta) : 0;
@@ -382,11 +383,11 @@ set_pairs(struct bdf2 *b)
 /* ---- the potential ---- */
 
 /* Where vertex v of the pairs' geometry is: a cloth node's in x, a
- * mesh's in col (they never move). */
+ * mesh's where contacts_find saw it (they never move). */
 static vec3
 vertex(const struct bdf2 *b, const double *x, int v)
 {
-	return v3_load(v < b->col->ncloth ? x + 3 * v : b->col->x0 + 3 * v);
+	return v3_load(v < b->ct->ncloth ? x + 3 * v : b->ct->xmesh + 3 * v);
 }
 
 /* A pair's separation sum w x along n0, and its relative motion over the
@@ -402,7 +403,7 @@ pair_gap(const struct bdf2 *b, const struct contact_pair *cp, const double *x, c
 		vec3 p = vertex(b, x, cp->vert[k]);
 
 		s = v3_madd(s, p, cp->w[k]);
-		if (cp->vert[k] < b->col->ncloth)
+		if (cp->vert[k] < b->ct->ncloth)
 			m = v3_madd(m, v3_sub(p, v3_load(x0 + 3 * cp->vert[k])), cp->w[k]);
 	}
 	if (rel != NULL)
@@ -603,7 +604,7 @@ pair_terms(struct bdf2 *b, const double *x, double *g)
 		if (g == NULL)
 			continue;
 		for (k = 0; k < 4; k++)
-			if (cp->vert[k] < b->col->ncloth)
+			if (cp->vert[k] < b->ct->ncloth)
 				v3_addto(g + 3 * cp->vert[k], v3_scale(push, cp->w[k]));
 	}
 	return e;
@@ -719,7 +720,7 @@ assemble_contacts(struct bdf2 *b, const double *x)
 			int v = cp->vert[k];
 			double w2 = cp->w[k] * cp->w[k];
 
-			if (v >= b->col->ncloth || held(b, v))
+			if (v >= b->ct->ncloth || held(b, v))
 				continue;
 			if (pt->gap < b->ct->thickness)
 				add_diag(b, v, n, n, pt->k * w2);
@@ -821,7 +822,7 @@ pair_mul(const struct bdf2 *b, const double *p, double *out)
 			int v = cp->vert[k];
 			vec3 pv;
 
-			if (v >= b->col->ncloth || held(b, v))
+			if (v >= b->ct->ncloth || held(b, v))
 				continue;
 			pv = v3_load(p + 3 * v);
 			sn += cp->w[k] * v3_dot(n, pv);
@@ -833,7 +834,7 @@ pair_mul(const struct bdf2 *b, const double *p, double *out)
 			vec3 pv, o;
 			double w = cp->w[k];
 
-			if (v >= b->col->ncloth || held(b, v))
+			if (v >= b->ct->ncloth || held(b, v))
 				continue;
 			pv = v3_load(p + 3 * v);
 			/* the whole product less the node's own block */
@@ -918,7 +919,7 @@ dot(const double *a, const double *c, size_t n)
 static bool
 stop_asked(struct bdf2 *b)
 {
-	if (b->stop != NULL && *b->stop)
+	if (stop_set(b->stop))
 		b->stopped = true;
 	return b->stopped;
 }
@@ -1022,7 +1023,7 @@ live_pairs(struct bdf2 *b)
 		int k;
 
 		for (k = 0; k < 4; k++)
-			if (cp->vert[k] < b->col->ncloth)
+			if (cp->vert[k] < b->ct->ncloth)
 				rate += cp->w[k] * v3_dot(v3_load(cp->n0), v3_load(b->dx + 3 * cp->vert[k]));
 		if (b->pt[b->near[j]].gap + EXTRAPOLATE_MOST * fmin(rate, 0) < b->ct->thickness ||
 		    b->pt[b->near[j]].lambda > 0)
@@ -1136,7 +1137,7 @@ find_resets(struct bdf2 *b)
 			continue;
 		b->live[b->nlive++] = q;
 		for (k = 0; k < 4; k++)
-			if (cp->vert[k] < b->col->ncloth && !held(b, cp->vert[k]) && cp->w[k] != 0)
+			if (cp->vert[k] < b->ct->ncloth && !held(b, cp->vert[k]) && cp->w[k] != 0)
 				add_reset(b, cp->vert[k], v3_load(cp->n0));
 	}
 }
@@ -1322,7 +1323,7 @@ newton(struct bdf2 *b, const double *y)
 
 void
 bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
-    struct contacts *ct, const struct collide *col)
+    struct contacts *ct)
 {
 	const struct cloth *cl = b->fo->cl;
 	size_t n3 = 3 * (size_t)cl->n, s, i;
@@ -1332,7 +1333,6 @@ bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
 	b->t1 = t + h;
 	b->x0 = y;
 	b->ct = ct != NULL && ct->n > 0 ? ct : NULL;
-	b->col = col;
 	set_formula(b, h, y);
 	for (s = 0; s < cl->nsprings; s++) {	/* the dashpots' directions */
 		const struct spring *sp = &cl->springs[s];

@@ -132,7 +132,6 @@ struct bdf2 {
 	double near_reach, drift;
 	bool near_ok;
 	struct contacts *ct;	/* the step's pairs, and their geometry */
-	const struct collide *col;
 	/* the normals along which each node's history is made anew at the
 	 * commit (up to 3 a node) */
 	double *rdir;
@@ -160,12 +159,12 @@ void bdf2_free(struct bdf2 *b);
 void bdf2_set_stop(struct bdf2 *b, const volatile sig_atomic_t *flag);
 
 /* y (positions, velocities at t) to y_out at t + h; ct: the step's
- * contact pairs (contacts_find) in col's geometry, or NULL. Held nodes
+ * contact pairs (contacts_find), or NULL. Held nodes
  * end on their prescribed positions (their velocities are the caller's).
  * Once the stop flag is set it returns early (b->stopped), y_out
  * unfinished. */
 void bdf2_step(struct bdf2 *b, double t, double h, const double *y, double *y_out,
-    struct contacts *ct, const struct collide *col);
+    struct contacts *ct);
 
 /* After the exact check: the free nodes' velocities scaled so that the
  * system's energy is the step's budget (bdf2.c energy_budget): its start,

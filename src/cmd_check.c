@@ -10,6 +10,7 @@
 #include "check.h"
 #include "cmd.h"
 #include "mesh.h"
+#include "network.h"
 #include "stepper.h"
 
 static int

@@ -9,29 +9,6 @@
 #include "collide_impl.h"
 
 /* Self-contact or obstacle meshes: the broad phase has pairs to find. */
-static bool
-broad_runs(const struct scene *sc)
-{
-	size_t o;
-
-	for (o = 0; o < sc->nobstacles; o++)
-		if (sc->obstacles[o].kind == OBSTACLE_MESH)
-			return true;
-	return sc->col.self;
-}
-
-bool
-collide_active(const struct scene *sc)
-{
-	return broad_runs(sc) || sc->nobstacles > 0;
-}
-
-bool
-collide_uses_hash(const struct scene *sc)
-{
-	return broad_runs(sc) && broad_uses_hash(sc->col.broad);
-}
-
 double
 collide_default_memory(void)
 {
@@ -63,10 +40,13 @@ collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
 	c->nobst = sc->nobstacles;
 	c->pad = 2;
 	c->slide_gap = INFINITY;
-	c->pairs = broad_runs(sc);
+	c->pairs = collide_broad_runs(sc);
 	c->active = collide_active(sc);
-	broad_init(&c->br, c->opt.broad);
-	c->br.memory_limit = c->opt.memory > 0 ? c->opt.memory : collide_default_memory();
+	if ((c->br = broad_new(c->opt.broad)) == NULL) {
+		err_set(err, "%s: out of memory", sc->path);
+		return -1;
+	}
+	broad_set_memory_limit(c->br, c->opt.memory > 0 ? c->opt.memory : collide_default_memory());
 	if (!c->active)
 		return 0;
 	if (collide_build_geometry(c, cl, held) != 0) {
@@ -84,7 +64,7 @@ collide_init(struct collide *c, const struct scene *sc, const struct cloth *cl,
 void
 collide_free(struct collide *c)
 {
-	broad_free(&c->br);
+	broad_free(c->br);
 	free(c->x0);
 	free(c->x1);
 	free(c->v1);
@@ -125,6 +105,105 @@ collide_set_stop(struct collide *c, const volatile sig_atomic_t *flag)
 	c->stop = flag;
 }
 
+/* Whether the boxes of the pair's two sides overlap: each vertex's box of
+ * the step (collide_candidates: its predicted path, widened), a side's the
+ * union of its vertices'. Every broad phase finds at least the pairs whose
+ * boxes overlap, some more (grid: whatever shares a cube); the pairs kept
+ * are those in reach among these, so that which broad phase found them
+ * does not change the run. */
+static bool
+boxes_overlap(const struct collide *c, const struct collide_pair *cp)
+{
+	int first = cp->other >= 0 ? 1 : 2, k, a;
+	double lo[2][3], hi[2][3];
+
+	for (k = 0; k < 4; k++) {
+		const double *b = c->box + 6 * (size_t)cp->vert[k];
+		int side = k >= first;
+
+		for (a = 0; a < 3; a++) {
+			if (k == 0 || k == first) {
+				lo[side][a] = b[a];
+				hi[side][a] = b[3 + a];
+			} else {	/* not fmin and fmax: library calls */
+				lo[side][a] = b[a] < lo[side][a] ? b[a] : lo[side][a];
+				hi[side][a] = b[3 + a] > hi[side][a] ? b[3 + a] : hi[side][a];
+			}
+		}
+	}
+	for (a = 0; a < 3; a++)
+		if (lo[0][a] > hi[1][a] || lo[1][a] > hi[0][a])
+			return false;
+	return true;
+}
+
+/* A mesh vertex's obstacle: that of its first triangle. */
+static int
+vertex_obstacle(const struct collide *c, int v)
+{
+	return c->tri_obstacle[c->vtri[c->vtri_start[v]]];
+}
+
+/* The pair to fn, unless a broad phase whose pairs are exactly those
+ * whose boxes overlap (bvh) found it: no test again, it was 5 % of a fast
+ * run's instructions. */
+static int
+each_pair_one(const struct collide *c, struct collide_pair *p,
+    int (*fn)(void *ctx, const struct collide_pair *p), void *ctx)
+{
+	if (!broad_boxes_exact(c->opt.broad) && !boxes_overlap(c, p))
+		return 0;
+	p->mu = collide_friction(c, p->obstacle).mu;
+	return fn(ctx, p);
+}
+
+int
+collide_each_pair(const struct collide *c, int (*fn)(void *ctx, const struct collide_pair *p),
+    void *ctx)
+{
+	size_t i, nvt, nee;
+	const struct vt_pair *vt = broad_vt(c->br, &nvt);
+	const struct ee_pair *ee = broad_ee(c->br, &nee);
+	int rc;
+
+	for (i = 0; i < nvt; i++) {
+		int v = vt[i].v, t = vt[i].t, obst = c->tri_obstacle[t];
+		struct collide_pair p;
+
+		if (stop_poll(i, c->stop))
+			return 1;
+		if (obst < 0 && v < c->ncloth && !c->opt.self)
+			continue;
+		if (v >= c->ncloth && obst >= 0)
+			continue;	/* both the meshes' */
+		if (v >= c->ncloth)
+			obst = vertex_obstacle(c, v);
+		p = (struct collide_pair){ .vert = { v, c->tri[3 * t], c->tri[3 * t + 1],
+		    c->tri[3 * t + 2] }, .other = t, .obstacle = obst };
+		if ((rc = each_pair_one(c, &p, fn, ctx)) != 0)
+			return rc;
+	}
+	for (i = 0; i < nee; i++) {
+		const int *a = c->edge + 2 * ee[i].a, *b = c->edge + 2 * ee[i].b;
+		int obst = -1;
+		struct collide_pair p;
+
+		if (stop_poll(i, c->stop))
+			return 1;
+		if (b[0] >= c->ncloth)
+			obst = vertex_obstacle(c, b[0]);
+		else if (a[0] >= c->ncloth)
+			obst = vertex_obstacle(c, a[0]);
+		if (obst < 0 && !c->opt.self)
+			continue;
+		p = (struct collide_pair){ .vert = { a[0], a[1], b[0], b[1] }, .other = -1 - ee[i].b,
+		    .obstacle = obst };
+		if ((rc = each_pair_one(c, &p, fn, ctx)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
 int
 collide_add_event(struct collide *c, long step, int node, enum contact_type type, int other,
     int obstacle, vec3 q, vec3 n, double vn_before, double vn_after)
@@ -162,7 +241,7 @@ collide_begin(struct collide *c)
 {
 	c->nev = 0;
 	c->stopped = false;
-	c->br.stop = c->stop;
+	broad_set_stop(c->br, c->stop);
 	memset(&c->st, 0, sizeof c->st);
 }
 
@@ -179,9 +258,9 @@ collide_candidates(struct collide *c, const double *y0, double h, double margin,
 	want.near = near;
 	want.near_motion = near_motion;
 
-	c->br.stop = c->stop;
+	broad_set_stop(c->br, c->stop);
 	if (!c->active || !c->pairs) {
-		c->br.nvt = c->br.nee = 0;
+		broad_clear(c->br);
 		return 0;
 	}
 	memcpy(c->x0, y0, n3 * sizeof *c->x0);
@@ -197,8 +276,8 @@ collide_candidates(struct collide *c, const double *y0, double h, double margin,
 		}
 	}
 	c->g.vbox = c->box;
-	if (broad_find(&c->br, &c->g, c->cell, &want, err) != 0) {
-		c->stopped = c->br.stopped;
+	if (broad_find(c->br, &c->g, c->cell, &want, err) != 0) {
+		c->stopped = broad_stopped(c->br);
 		return -1;
 	}
 	return 0;
@@ -245,17 +324,18 @@ collide_check(struct collide *c, long step, double dt, const double *y0, double 
 	c->g.vbox = c->opt.narrow == NARROW_CCD ? c->box : NULL;
 	if (c->pairs) {
 		struct broad_want want = collide_broad_want(c->opt.narrow, c->opt.self);
+		const struct broad_stats *bs = broad_stats(c->br);
 
-		if (broad_find(&c->br, &c->g, c->cell, &want, err) != 0) {
-			c->stopped = c->br.stopped;
+		if (broad_find(c->br, &c->g, c->cell, &want, err) != 0) {
+			c->stopped = broad_stopped(c->br);
 			return -1;
 		}
-		c->st.n[STAT_NODE_PAIRS] = c->br.st.node_pairs;
-		c->st.n[STAT_VT_PAIRS] = c->br.st.vt_pairs;
-		c->st.n[STAT_EE_PAIRS] = c->br.st.ee_pairs;
-		c->st.n[STAT_FILLS] = c->br.st.rebuilt;
-		c->st.cell = c->br.st.cell;
-		c->st.hash = c->br.st.hash;
+		c->st.n[STAT_NODE_PAIRS] = bs->node_pairs;
+		c->st.n[STAT_VT_PAIRS] = bs->vt_pairs;
+		c->st.n[STAT_EE_PAIRS] = bs->ee_pairs;
+		c->st.n[STAT_FILLS] = bs->rebuilt;
+		c->st.cell = bs->cell;
+		c->st.hash = bs->hash;
 	}
 	if (c->opt.narrow == NARROW_SEED) {
 		memset(c->changed, 0, (size_t)c->nv);

@@ -35,28 +35,6 @@
 
 #define COLLIDE_FAILSAFE_PASS 5	/* ccd: from this pass on, a hit node goes back to step k */
 
-/* A step's number as drape shows it. A step record's and an event's step k
- * (in memory and in replay files) is the step from state k to state k + 1;
- * it is shown as k + 1, the state it led to, which the status line then
- * shows ("step 37"): shown as k, an event appeared one step before its
- * own in the inspector, and a replay's "step 36" listed none of the
- * events drape events gave for step 36. */
-static inline long
-step_shown(long step)
-{
-	return step + 1;
-}
-
-struct contact_event {
-	long step;		/* from 0: shown as step_shown(step) */
-	int node;		/* the corrected cloth node */
-	enum contact_type type;
-	int other;		/* triangle or edge (by type) of the geometry, or -1 */
-	int obstacle;		/* the scene's obstacle, or -1 for the cloth itself */
-	vec3 q, n;		/* contact point and unit normal */
-	double vn_before, vn_after;	/* the node's velocity along n */
-};
-
 struct collide {
 	struct collision_opts opt;
 	const struct obstacle *obst;
@@ -85,7 +63,7 @@ struct collide {
 	unsigned char *fixed;	/* held nodes and obstacle vertices */
 	double *inv_mass;	/* 1/m, 0 for what contacts cannot move */
 	struct geom g;
-	struct broad br;
+	struct broad *br;
 
 	/* per pass */
 	unsigned char *changed, *changed_next, *frozen;
@@ -98,12 +76,6 @@ struct collide {
 	size_t nev, evcap;
 	struct collide_stats st, total;
 };
-
-/* Anything for the stages to do in this scene (an obstacle, or the cloth
- * against itself); and whether its broad phase runs and fills a spatial
- * hash. From the scene alone, so that a replay's viewer says the same. */
-bool collide_active(const struct scene *sc);
-bool collide_uses_hash(const struct scene *sc);
 
 /* What `[collision] memory = auto` allows the stages: half the machine's. */
 double collide_default_memory(void);
@@ -153,6 +125,24 @@ int collide_check(struct collide *c, long step, double dt, const double *y0, dou
  * them at a step's start (contacts.h). 0, or -1 with a message. */
 int collide_candidates(struct collide *c, const double *y0, double h, double margin, double share,
     double near, double near_motion, struct drape_err *err);
+
+/* A pair of collide_candidates, as the fast path's contacts take it: a
+ * vertex then a triangle's three vertices (other: the triangle), or two
+ * edges' (other: -1 - the second edge); the mesh's obstacle, or -1 for
+ * cloth on cloth, and the friction between the two. */
+struct collide_pair {
+	int vert[4];
+	int other;
+	int obstacle;
+	double mu;
+};
+
+/* Calls fn on each pair of the last collide_candidates that the scene
+ * collides (cloth on cloth with self-contact only, never two meshes) and
+ * whose two sides' boxes overlap, in the broad phase's order. 0; 1 when
+ * the stop flag is set (the step is given up); else fn's first nonzero. */
+int collide_each_pair(const struct collide *c, int (*fn)(void *ctx, const struct collide_pair *p),
+    void *ctx);
 
 /* Records a contact of the step as an event (and a correction); 0, or -1
  * out of memory. */

@@ -229,7 +229,9 @@ int
 collide_ccd_passes(struct collide *c, long step, double dt)
 {
 	int pass, v, max_pass = c->ncloth + COLLIDE_FAILSAFE_PASS + 1;
-	size_t i;
+	size_t i, nvt, nee;
+	const struct vt_pair *vt;
+	const struct ee_pair *ee;
 
 	memset(c->frozen, 0, (size_t)c->nv);
 	memset(c->changed, 1, (size_t)c->nv);
@@ -237,22 +239,24 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 		long before = c->st.n[STAT_CORRECTIONS];
 
 		memset(c->changed_next, 0, (size_t)c->nv);
-		if (c->stop != NULL && *c->stop) {
+		if (stop_set(c->stop)) {
 			c->stopped = true;	/* a signal: collide_step gives the step up */
 			return 0;
 		}
 		/* the flat patches the broad phase left out, judged again where
 		 * the last pass moved their nodes */
-		if (pass > 0 && c->pairs && broad_recheck(&c->br, &c->g, c->changed) < 0) {
-			if (!c->br.stopped)
+		if (pass > 0 && c->pairs && broad_recheck(c->br, &c->g, c->changed) < 0) {
+			if (!broad_stopped(c->br))
 				return -1;
 			c->stopped = true;
 			return 0;
 		}
-		for (i = 0; c->pairs && i < c->br.nvt; i++) {
-			int vv = c->br.vt[i].v, t = c->br.vt[i].t;
+		vt = broad_vt(c->br, &nvt);
+		ee = broad_ee(c->br, &nee);
+		for (i = 0; c->pairs && i < nvt; i++) {
+			int vv = vt[i].v, t = vt[i].t;
 
-			if ((i & 4095) == 0 && c->stop != NULL && *c->stop) {
+			if (stop_poll(i, c->stop)) {
 				c->stopped = true;
 				return 0;
 			}
@@ -279,13 +283,13 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 			    ccd_vertex_triangle(c, step, dt, vv, t, toi, pass) != 0)
 				return -1;
 		}
-		for (i = 0; c->pairs && i < c->br.nee; i++) {
-			int ea = c->br.ee[i].a, eb = c->br.ee[i].b, k;
+		for (i = 0; c->pairs && i < nee; i++) {
+			int ea = ee[i].a, eb = ee[i].b, k;
 			const int *na = c->edge + 2 * ea, *nb = c->edge + 2 * eb;
 			vec3 x0[4], x1[4];
 			double toi;
 
-			if ((i & 4095) == 0 && c->stop != NULL && *c->stop) {
+			if (stop_poll(i, c->stop)) {
 				c->stopped = true;
 				return 0;
 			}

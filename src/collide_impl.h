@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "collide.h"
+#include "stop.h"
 
 static inline vec3 X0(const struct collide *c, int v) { return v3_load(c->x0 + 3 * v); }
 static inline vec3 X1(const struct collide *c, int v) { return v3_load(c->x1 + 3 * v); }

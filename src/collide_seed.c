@@ -78,8 +78,8 @@ correct_shared(struct collide *c, long step, double dt, int v, int t, enum conta
 int
 collide_seed_pass(struct collide *c, long step, double dt, unsigned char *hit)
 {
-	const struct vt_pair *vt = c->br.vt;
-	size_t i = 0, j, nvt = c->br.nvt;
+	size_t i = 0, j, nvt;
+	const struct vt_pair *vt = broad_vt(c->br, &nvt);
 
 	while (i < nvt) {
 		int v = vt[i].v, done = 0;

@@ -13,7 +13,7 @@
 #include <stddef.h>
 
 #include "cloth.h"
-#include "collide.h"
+#include "event.h"
 
 enum colouring {
 	COLOUR_SHADE,		/* the cloth's own colour, front and back, shaded */

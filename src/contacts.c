@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "collide.h"
 #include "contacts.h"
 #include "vec3.h"
 
@@ -27,12 +28,12 @@ contacts_clear(struct contacts *ct)
 	ct->n = 0;
 }
 
-/* Where vertex v of col's geometry is: a cloth node's in x, a mesh's in
- * col (they never move). */
+/* Where vertex v of the pairs' geometry is: a cloth node's in x, a
+ * mesh's where contacts_find saw it (they never move). */
 static vec3
-at(const struct collide *col, const double *x, int v)
+at(const struct contacts *ct, const double *x, int v)
 {
-	return v3_load(v < col->ncloth ? x + 3 * v : col->x0 + 3 * v);
+	return v3_load(v < ct->ncloth ? x + 3 * v : ct->xmesh + 3 * v);
 }
 
 /* The point of triangle abc nearest p, as barycentric weights (Ericson,
@@ -98,12 +99,12 @@ closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, double w[3])
 
 /* The pair's four vertices at positions x. */
 static void
-points(const struct contact_pair *cp, const struct collide *col, const double *x, vec3 p[4])
+points(const struct contact_pair *cp, const struct contacts *ct, const double *x, vec3 p[4])
 {
 	int k;
 
 	for (k = 0; k < 4; k++)
-		p[k] = at(col, x, cp->vert[k]);
+		p[k] = at(ct, x, cp->vert[k]);
 }
 
 /* The pair's weights on its four vertices at points p: the separation is
@@ -157,59 +158,22 @@ add_pair(struct contacts *ct, const struct contact_pair *cp)
 	return 0;
 }
 
-/* Whether the boxes of the pair's two sides overlap: each vertex's box of
- * the step (collide_candidates: its predicted path, widened), a side's the
- * union of its vertices'. Every broad phase finds at least the pairs whose
- * boxes overlap, some more (grid: whatever shares a cube); the pairs kept
- * are those in reach among these, so that which broad phase found them
- * does not change the run. */
-static bool
-boxes_overlap(const struct collide *col, const struct contact_pair *cp)
-{
-	int first = cp->other >= 0 ? 1 : 2, k, a;
-	double lo[2][3], hi[2][3];
-
-	for (k = 0; k < 4; k++) {
-		const double *b = col->box + 6 * (size_t)cp->vert[k];
-		int side = k >= first;
-
-		for (a = 0; a < 3; a++) {
-			if (k == 0 || k == first) {
-				lo[side][a] = b[a];
-				hi[side][a] = b[3 + a];
-			} else {	/* not fmin and fmax: library calls */
-				lo[side][a] = b[a] < lo[side][a] ? b[a] : lo[side][a];
-				hi[side][a] = b[3 + a] > hi[side][a] ? b[3 + a] : hi[side][a];
-			}
-		}
-	}
-	for (a = 0; a < 3; a++)
-		if (lo[0][a] > hi[1][a] || lo[1][a] > hi[0][a])
-			return false;
-	return true;
-}
-
 /* Keeps the pair if it may come within the thickness during the step
  * (CONTACTS_REACH, contacts.h). */
 static int
-consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp,
-    const double *y0, double h)
+consider(struct contacts *ct, struct contact_pair *cp, const double *y0, double h)
 {
-	size_t n3 = 3 * (size_t)col->ncloth;
+	size_t n3 = 3 * (size_t)ct->ncloth;
 	double w[4], dist, rel = 0;
 	vec3 d, p[4], disp[4];
 	int k, l, first = cp->other >= 0 ? 1 : 2;
 
-	/* a broad phase whose pairs are exactly these (bvh) needs no test
-	 * again: it was 5 % of a fast run's instructions */
-	if (!broad_boxes_exact(col->opt.broad) && !boxes_overlap(col, cp))
-		return 0;
-	points(cp, col, y0, p);
+	points(cp, ct, y0, p);
 	weights(cp, p, w);
 	d = separation(p, w);
 	dist = v3_len(d);
 	for (k = 0; k < 4; k++)
-		disp[k] = cp->vert[k] < col->ncloth ?
+		disp[k] = cp->vert[k] < ct->ncloth ?
 		    v3_scale(v3_load(y0 + n3 + 3 * cp->vert[k]), h) : v3(0, 0, 0);
 	/* first side's vertices against the second's: the vertex against the
 	 * triangle's three, or edge against edge; the largest of the squares,
@@ -247,58 +211,33 @@ consider(struct contacts *ct, const struct collide *col, struct contact_pair *cp
 	return add_pair(ct, cp);
 }
 
-/* A signal asks the run to stop: a fast cloth's millions of candidate
- * pairs take a good part of a second to look at. */
-static bool
-stop_asked(const struct collide *col)
+struct find_ctx {
+	struct contacts *ct;
+	const double *y0;
+	double h;
+};
+
+static int
+find_one(void *ctx, const struct collide_pair *p)
 {
-	return col->stop != NULL && *col->stop;
+	struct find_ctx *f = ctx;
+	struct contact_pair cp = { .nv = 4, .other = p->other, .obstacle = p->obstacle, .mu = p->mu };
+
+	memcpy(cp.vert, p->vert, sizeof cp.vert);
+	return consider(f->ct, &cp, f->y0, f->h);
 }
 
 int
 contacts_find(struct contacts *ct, const struct collide *col, const double *y0, double h)
 {
-	const struct broad *br = &col->br;
-	size_t i;
+	struct find_ctx f = { ct, y0, h };
+	int rc;
 
 	ct->n = 0;
-	for (i = 0; i < br->nvt; i++) {
-		int v = br->vt[i].v, t = br->vt[i].t, obst = col->tri_obstacle[t];
-		struct contact_pair cp;
-
-		if ((i & 4095) == 0 && stop_asked(col))
-			return 1;
-		if (obst < 0 && v < col->ncloth && !col->opt.self)
-			continue;
-		if (v >= col->ncloth && obst >= 0)
-			continue;	/* both the meshes' */
-		if (v >= col->ncloth)
-			obst = col->tri_obstacle[col->vtri[col->vtri_start[v]]];
-		cp = (struct contact_pair){ .nv = 4, .vert = { v, col->tri[3 * t], col->tri[3 * t + 1],
-		    col->tri[3 * t + 2] }, .other = t, .obstacle = obst };
-		cp.mu = collide_friction(col, obst).mu;
-		if (consider(ct, col, &cp, y0, h) != 0)
-			return -1;
-	}
-	for (i = 0; i < br->nee; i++) {
-		const int *a = col->edge + 2 * br->ee[i].a, *b = col->edge + 2 * br->ee[i].b;
-		int obst = -1;
-		struct contact_pair cp;
-
-		if ((i & 4095) == 0 && stop_asked(col))
-			return 1;
-		if (b[0] >= col->ncloth)
-			obst = col->tri_obstacle[col->vtri[col->vtri_start[b[0]]]];
-		else if (a[0] >= col->ncloth)
-			obst = col->tri_obstacle[col->vtri[col->vtri_start[a[0]]]];
-		if (obst < 0 && !col->opt.self)
-			continue;
-		cp = (struct contact_pair){ .nv = 4, .vert = { a[0], a[1], b[0], b[1] },
-		    .other = -1 - br->ee[i].b, .obstacle = obst };
-		cp.mu = collide_friction(col, obst).mu;
-		if (consider(ct, col, &cp, y0, h) != 0)
-			return -1;
-	}
+	ct->ncloth = collide_geom(col)->ncloth;
+	ct->xmesh = collide_geom(col)->x0;
+	if ((rc = collide_each_pair(col, find_one, &f)) != 0)
+		return rc > 0 ? 1 : -1;
 	ct->found += (long)ct->n;
 	return 0;
 }
@@ -311,8 +250,7 @@ contacts_find(struct contacts *ct, const struct collide *col, const double *y0, 
  * a contact that slides far enough to leave them is the step's check's.
  */
 void
-contacts_project(struct contacts *ct, const struct collide *col, const double *w_node,
-    double *x, const double *xprev)
+contacts_project(struct contacts *ct, const double *w_node, double *x, const double *xprev)
 {
 	size_t i;
 
@@ -330,7 +268,7 @@ contacts_project(struct contacts *ct, const struct collide *col, const double *w
 			}
 		} else {
 			for (k = 0; k < 4; k++) {
-				p[k] = at(col, x, cp->vert[k]);
+				p[k] = at(ct, x, cp->vert[k]);
 				gap += w[k] * v3_dot(n, p[k]);
 			}
 		}
@@ -339,7 +277,7 @@ contacts_project(struct contacts *ct, const struct collide *col, const double *w
 		for (k = 0; k < 4; k++) {
 			int v = cp->vert[k];
 
-			im[k] = v < col->ncloth ? w_node[v] : 0;
+			im[k] = v < ct->ncloth ? w_node[v] : 0;
 			den += w[k] * w[k] * im[k];
 		}
 		if (!(den > 0))
@@ -360,7 +298,7 @@ contacts_project(struct contacts *ct, const struct collide *col, const double *w
 			for (k = 0; k < 4; k++) {
 				int v = cp->vert[k];
 
-				if (v < col->ncloth)
+				if (v < ct->ncloth)
 					rel = v3_madd(rel, v3_sub(p[k], v3_load(xprev + 3 * v)), w[k]);
 			}
 			tan = v3_madd(rel, n, -v3_dot(rel, n));
@@ -381,7 +319,7 @@ contacts_project(struct contacts *ct, const struct collide *col, const double *w
 int
 contacts_events(struct contacts *ct, struct collide *col, long step, const double *y1)
 {
-	size_t n3 = 3 * (size_t)col->ncloth, i;
+	size_t n3 = 3 * (size_t)ct->ncloth, i;
 
 	for (i = 0; i < ct->n; i++) {
 		const struct contact_pair *cp = &ct->pair[i];
@@ -392,7 +330,7 @@ contacts_events(struct contacts *ct, struct collide *col, long step, const doubl
 
 		if (!cp->active)
 			continue;
-		points(cp, col, y1, p);
+		points(cp, ct, y1, p);
 		weights(cp, p, w);
 		d = separation(p, w);
 		n = v3_len(d) > 0 ? v3_scale(d, 1 / v3_len(d)) : v3_load(cp->n0);
@@ -401,7 +339,7 @@ contacts_events(struct contacts *ct, struct collide *col, long step, const doubl
 
 			if (w[k] < 0)
 				q = v3_madd(q, p[k], -w[k]);
-			if (v < col->ncloth)
+			if (v < ct->ncloth)
 				rv = v3_madd(rv, v3_load(y1 + n3 + 3 * v), w[k]);
 		}
 		if (collide_add_event(col, step, cp->vert[0], tri ? CONTACT_NODE_FACE : CONTACT_EDGE_EDGE,

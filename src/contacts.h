@@ -18,7 +18,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "collide.h"
+#include "vec3.h"
+
+struct collide;
 
 /* A pair is kept if its boxes overlap and its separation at the step's
  * start, less CONTACTS_REACH_MOTION times its predicted relative motion
@@ -43,6 +45,11 @@ struct contacts {
 	struct contact_pair *pair;
 	size_t n, cap;
 	double thickness;	/* the separation held */
+	/* the pairs' geometry: vertices below ncloth are the cloth's nodes
+	 * (in the caller's positions), the others the meshes' (at xmesh,
+	 * which never move) */
+	int ncloth;
+	const double *xmesh;
 	long found, active;	/* so far */
 };
 
@@ -59,10 +66,9 @@ void contacts_clear(struct contacts *ct);
 int contacts_find(struct contacts *ct, const struct collide *col, const double *y0, double h);
 
 /* One substep's projection of every pair, on cloth positions x (3n; the
- * meshes' vertices are col's) moved from xprev in the substep; w: the cloth
- * nodes' inverse masses (0 held). */
-void contacts_project(struct contacts *ct, const struct collide *col, const double *w,
-    double *x, const double *xprev);
+ * meshes' vertices are where contacts_find saw them) moved from xprev in
+ * the substep; w: the cloth nodes' inverse masses (0 held). */
+void contacts_project(struct contacts *ct, const double *w, double *x, const double *xprev);
 
 /* The step's active pairs as events of col, at step's end positions and
  * velocities y1. 0, or -1 out of memory. */

@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include "collide.h"
+#include "event.h"
 
 #define EVLOG_PER_NODE 4
 

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "forces.h"
+#include "stop.h"
 #include "vec3.h"
 
 int
@@ -95,7 +96,7 @@ forces_set_stop(struct forces *fo, const volatile sig_atomic_t *flag)
 bool
 forces_stopped(const struct forces *fo)
 {
-	return fo->stop != NULL && *fo->stop;
+	return stop_set(fo->stop);
 }
 
 static int

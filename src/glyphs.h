@@ -12,7 +12,7 @@
 #include <stdint.h>
 
 #include "cloth.h"
-#include "collide.h"
+#include "event.h"
 #include "paint.h"
 #include "raster.h"
 #include "render.h"

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "implicit.h"
+#include "stop.h"
 #include "vec3.h"
 
 int
@@ -288,7 +289,7 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 	for (it = 0; it < im->max_iter && rr > stop2; it++) {
 		double pq, alpha, rz_new, beta;
 
-		if (im->stop != NULL && *im->stop) {
+		if (stop_set(im->stop)) {
 			im->stopped = true;	/* the caller drops this step */
 			break;
 		}

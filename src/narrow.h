@@ -8,6 +8,7 @@
 #ifndef DRAPE_NARROW_H
 #define DRAPE_NARROW_H
 
+#include "event.h"
 #include "vec3.h"
 
 /* Which narrow phase a scene runs: the chapter's test (below) once a
@@ -28,17 +29,6 @@ enum inside_test {
  * the triangle containing the colliding node"), or both, in that order. */
 enum seed_segments { SEGMENTS_BOTH, SEGMENTS_PATH, SEGMENTS_EDGES };
 extern const char *const seed_segments_name[];	/* NULL-terminated, for the parser */
-
-enum contact_type {
-	CONTACT_NODE_NODE,	/* Q on a vertex of the triangle */
-	CONTACT_NODE_EDGE,	/* Q on an edge: an angle about Q is pi */
-	CONTACT_NODE_FACE,	/* Q inside the face */
-	CONTACT_EDGE_EDGE,	/* r is an edge F-D and D did not cross itself */
-	CONTACT_OBSTACLE,	/* a node in an analytic obstacle */
-};
-#define CONTACT_NTYPES 5
-
-extern const char *const contact_type_name[CONTACT_NTYPES];
 
 struct seed_hit {
 	vec3 q;			/* eq. 8 */

@@ -16,11 +16,11 @@ static const struct rgb grid_colour = { 196, 196, 190 };
 static const float solid_colour[3] = { 0.60f, 0.66f, 0.74f };
 static const struct rgb edge_colour = { 70, 78, 90 };
 
-/* The light, in view space: from the viewer's upper left. */
+/* The light, in view space (raster.h's), as a unit vector. */
 static vec3
 light(void)
 {
-	vec3 l = v3(-0.35, 0.6, 0.72);
+	vec3 l = RASTER_LIGHT;
 
 	return v3_scale(l, 1 / v3_len(l));
 }
@@ -189,17 +189,6 @@ draw_mesh(struct render *im, const struct camera *cam, const struct mesh *m, boo
 			    cutaway ? INFINITY : slack, CELL_SOLID);
 }
 
-/* Two unit vectors across the plane of normal n. */
-static void
-tangents(vec3 n, vec3 *u, vec3 *w)
-{
-	vec3 a = fabs(n.y) < 0.9 ? v3(0, 1, 0) : v3(1, 0, 0);
-
-	*u = v3_cross(n, a);
-	*u = v3_scale(*u, 1 / v3_len(*u));
-	*w = v3_cross(n, *u);
-}
-
 double
 paint_floor_spacing(const struct camera *cam)
 {
@@ -232,7 +221,7 @@ draw_floor(struct render *im, const struct camera *cam, const struct obstacle *o
 	size_t t;
 	int k;
 
-	tangents(n, &u, &w);
+	v3_tangents(n, &u, &w);
 	plain_quad(im, cam, v3_madd(v3_madd(under, u, -half), w, -half),
 	    v3_madd(v3_madd(under, u, half), w, -half), v3_madd(v3_madd(under, u, half), w, half),
 	    v3_madd(v3_madd(under, u, -half), w, half), floor_colour, 0, CELL_FLOOR);

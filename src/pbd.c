@@ -461,8 +461,7 @@ tension_omega2(const struct pbd *pb, const double *x)
 }
 
 void
-pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, struct contacts *ct,
-    const struct collide *col)
+pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, struct contacts *ct)
 {
 	const struct cloth *cl = pb->fo->cl;
 	size_t n3 = 3 * (size_t)cl->n, i;
@@ -506,7 +505,7 @@ pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out, str
 		solve_family(pb, &pb->line[0], hs, pb->xs);
 		solve_family(pb, &pb->line[1], hs, pb->xs);
 		if (ct != NULL)
-			contacts_project(ct, col, pb->w, pb->xs, pb->xprev);
+			contacts_project(ct, pb->w, pb->xs, pb->xprev);
 		obstacles(pb, pb->xs);
 		for (i = 0; i < n3; i++)
 			pb->vs[i] = (pb->xs[i] - pb->xprev[i]) / hs;

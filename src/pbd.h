@@ -90,13 +90,13 @@ double pbd_substep(const struct forces *fo, double dt);
 #define PBD_MAX_SUBSTEPS 10000
 
 /* y (positions, velocities at t) to y_out at t + h; ct: the step's
- * contacts between parts of the cloth and with meshes (col's geometry),
+ * contacts between parts of the cloth and with meshes (contacts_find),
  * held each substep, or NULL. Once the forces' stop flag is set
  * (forces_set_stop) it returns early, y_out unfinished. */
 struct contacts;
 struct collide;
 void pbd_step(struct pbd *pb, double t, double h, const double *y, double *y_out,
-    struct contacts *ct, const struct collide *col);
+    struct contacts *ct);
 
 /* The step's contacts with analytic obstacles as events of col, one a node
  * that a substep pushed out of one (the last it did): at the surface's

@@ -132,7 +132,7 @@ shade(vec3 n, enum cell_kind kind)
 	static const char cloth[] = RASTER_RAMP, solid[] = RASTER_SOLID_RAMP;
 	const char *ramp = kind == CELL_SOLID ? solid : cloth;
 	const int len = (int)strlen(ramp);
-	vec3 light = v3(-0.35, 0.6, 0.72);
+	vec3 light = RASTER_LIGHT;
 	double len_n = v3_len(n), lit;
 	int k;
 

@@ -80,6 +80,11 @@ void raster_free(struct raster *r);
 bool raster_project(const struct raster *r, const struct camera *cam, vec3 p, double *col,
     double *row, double *z);
 
+/* The light, in view space, from the viewer's upper left (not of unit
+ * length): the terminal's shading and the pictures' (paint.c) take it,
+ * so that both light a scene alike. */
+#define RASTER_LIGHT v3(-0.35, 0.6, 0.72)
+
 /* Fills the cells whose centres the triangle covers and that it is nearer
  * in, with the ramp character of its lighting (two-sided: a cloth has no
  * outside); CELL_FLOOR fills with blanks, which hide what is under a floor

@@ -5,6 +5,7 @@
 
 #include "config.h"
 #include "record.h"
+#include "network.h"
 
 long
 record_default_keyframes(const struct stepper *st)

@@ -8,6 +8,7 @@
 #define DRAPE_RENDER_H
 
 #include <stdbool.h>
+#include <stddef.h>
 
 #include "raster.h"
 #include "vec3.h"

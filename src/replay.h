@@ -17,8 +17,9 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "collide.h"
 #include "err.h"
+#include "event.h"
+#include "stats.h"
 
 /* Version 2 is version 1 with lossy frames chunks (REPLAY_FRAMES_Q);
  * version 3 writes its frames as chunks of the grid (REPLAY_FRAMES_GRID,
@@ -164,7 +165,7 @@ struct replay_writer {
 	unsigned char *buf;	/* scratch, grown as needed */
 	size_t bufcap;
 	/* the chunks being deflated beside the run, written in order a few
-	 * chunks later, at a flush or at close (replay.c write_chunk) */
+	 * chunks later, at a flush or at close (replay_writer.c write_chunk) */
 	struct replay_jobs *jobs;
 	long next_key;		/* the keyframe the next chunk is, or -1 */
 	bool next_provisional;	/* the next chunk is (see flush_every) */

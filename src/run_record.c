@@ -11,7 +11,9 @@
 
 #include "config.h"
 #include "run_record.h"
+#include "network.h"
 #include "shadow.h"
+#include "stats.h"
 #include "vec3.h"
 
 #define DRAPE_RASTER 0.5e-3	/* m: the shadow's cells, 1/600 of a 30 cm specimen */

@@ -12,6 +12,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "forces.h"
 #include "stepper.h"
 
 /* How the stepping ended. */

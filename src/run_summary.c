@@ -2,6 +2,7 @@
 #include <inttypes.h>
 
 #include "run_summary.h"
+#include "stats.h"
 
 static void
 network_summary(FILE *f, const struct scene *sc, const struct cloth *cl)

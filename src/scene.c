@@ -14,7 +14,6 @@
 #include <string.h>
 
 #include "cloth.h"
-#include "collide.h"
 #include "ini.h"
 #include "override.h"
 #include "replay.h"
@@ -1452,4 +1451,27 @@ scene_free(struct scene *sc)
 	free(sc->name);
 	free(sc->text);
 	memset(sc, 0, sizeof *sc);
+}
+
+bool
+collide_broad_runs(const struct scene *sc)
+{
+	size_t o;
+
+	for (o = 0; o < sc->nobstacles; o++)
+		if (sc->obstacles[o].kind == OBSTACLE_MESH)
+			return true;
+	return sc->col.self;
+}
+
+bool
+collide_active(const struct scene *sc)
+{
+	return collide_broad_runs(sc) || sc->nobstacles > 0;
+}
+
+bool
+collide_uses_hash(const struct scene *sc)
+{
+	return collide_broad_runs(sc) && broad_uses_hash(sc->col.broad);
 }

@@ -156,4 +156,13 @@ int scene_parse_bytes_set(struct scene *sc, const char *path, const void *data, 
     const char *const *sets, size_t nsets, struct drape_err *err);
 void scene_free(struct scene *sc);
 
+/* Anything for the collision stages to do in this scene (an obstacle, or
+ * the cloth against itself); whether their broad phase runs (the cloth
+ * against itself, or a mesh), and whether it fills a spatial hash. From
+ * the scene alone (scene.c), so that a replay's viewer says the same as
+ * the run. */
+bool collide_active(const struct scene *sc);
+bool collide_broad_runs(const struct scene *sc);
+bool collide_uses_hash(const struct scene *sc);
+
 #endif

@@ -7,7 +7,7 @@
 
 #include <stdbool.h>
 
-#include "collide.h"
+#include "event.h"
 #include "evlog.h"
 #include "hash.h"
 #include "source.h"

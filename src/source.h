@@ -12,7 +12,7 @@
 #include <stddef.h>
 
 #include "cloth.h"
-#include "collide.h"
+#include "event.h"
 #include "evlog.h"
 #include "forces.h"
 #include "network.h"

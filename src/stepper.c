@@ -6,10 +6,13 @@
 
 #include "bdf2.h"
 #include "clock.h"
+#include "collide.h"
 #include "contacts.h"
 #include "implicit.h"
+#include "network.h"
 #include "pbd.h"
 #include "stepper.h"
+#include "stop.h"
 #include "vec3.h"
 
 struct stepper {
@@ -498,14 +501,14 @@ stepper_step(struct stepper *st, struct step_failure *f)
 
 		if (s != STEP_OK)
 			return s;
-		pbd_step(&st->pb, st->t, h, st->y, st->y_next, &st->ct, &st->col);
+		pbd_step(&st->pb, st->t, h, st->y, st->y_next, &st->ct);
 		h_next = h;
 	} else if (st->in.kind == INTEG_BDF2) {
 		enum step_status s = fast_contacts(st, h, f);
 
 		if (s != STEP_OK)
 			return s;
-		bdf2_step(&st->bd, st->t, h, st->y, st->y_next, &st->ct, &st->col);
+		bdf2_step(&st->bd, st->t, h, st->y, st->y_next, &st->ct);
 		h_next = h;
 		if (st->bd.stopped) {
 			snprintf(f->why, sizeof f->why, "stopped by a signal");
@@ -569,7 +572,7 @@ stepper_step(struct stepper *st, struct step_failure *f)
 	/* a signal since the long loops last looked (the checks above take a
 	 * third of a second on 590,000 nodes under the sanitizers): the step
 	 * is still under way, so it is given up as theirs would be */
-	if (st->stop != NULL && *st->stop) {
+	if (stop_set(st->stop)) {
 		snprintf(f->why, sizeof f->why, "stopped by a signal");
 		return failed(st, f, STEP_STOPPED, -1);
 	}

@@ -16,13 +16,18 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "collide.h"
-#include "err.h"
-#include "forces.h"
-#include "integrate.h"
-#include "network.h"
-#include "scene.h"
-#include "stats.h"
+#include "integrate.h"	/* enum integrator_kind */
+
+/* What the interface names by pointer only: a caller that reads one
+ * includes its header (scene.h, network.h, forces.h, broad.h, stats.h,
+ * event.h, err.h), and no caller sees the stages' state. */
+struct collide_stats;
+struct contact_event;
+struct drape_err;
+struct energy;
+struct geom;
+struct network;
+struct scene;
 
 struct stepper;
 

@@ -58,4 +58,16 @@ v3_closest_on_segments(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
 	}
 }
 
+/* Two unit vectors across the plane of normal n (the pictures' and the
+ * terminal's floor grids). */
+static inline void
+v3_tangents(vec3 n, vec3 *u, vec3 *w)
+{
+	vec3 a = fabs(n.y) < 0.9 ? v3(0, 1, 0) : v3(1, 0, 0);
+
+	*u = v3_cross(n, a);
+	*u = v3_scale(*u, 1 / v3_len(*u));
+	*w = v3_cross(n, *u);
+}
+
 #endif

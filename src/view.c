@@ -70,17 +70,6 @@ draw_disc(struct raster *r, const struct camera *cam, vec3 c, double rad, double
 	}
 }
 
-/* Two unit vectors across the plane of normal n. */
-static void
-tangents(vec3 n, vec3 *u, vec3 *w)
-{
-	vec3 a = fabs(n.y) < 0.9 ? v3(0, 1, 0) : v3(1, 0, 0);
-
-	*u = v3_cross(n, a);
-	*u = v3_scale(*u, 1 / v3_len(*u));
-	*w = v3_cross(n, *u);
-}
-
 /* A square of the plane about the framed target: blanks that hide what is
  * under it, and a grid of dots on it. */
 static void
@@ -94,7 +83,7 @@ draw_floor(struct raster *r, const struct camera *cam, vec3 point, vec3 n)
 	vec3 under = v3_madd(c, n, -sink);
 	int i, k, samples = 2 * (r->w + 2 * r->h);
 
-	tangents(n, &u, &w);
+	v3_tangents(n, &u, &w);
 	quad(r, cam, v3_madd(v3_madd(under, u, -half), w, -half),
 	    v3_madd(v3_madd(under, u, half), w, -half), v3_madd(v3_madd(under, u, half), w, half),
 	    v3_madd(v3_madd(under, u, -half), w, half), CELL_FLOOR);

@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include "collide.h"
+#include "event.h"
 #include "raster.h"
 #include "scene.h"
 

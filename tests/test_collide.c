@@ -5,10 +5,20 @@
 
 #include "check.h"
 #include "broad.h"
+#include "broad_impl.h"	/* white-box: the held pairs and flat patches */
 #include "ccd.h"
 #include "collide.h"
 #include "mesh.h"
 #include "narrow.h"
+
+static struct broad *
+new_broad(enum broad_mode mode)
+{
+	struct broad *b = broad_new(mode);
+
+	assert_non_null(b);
+	return b;
+}
 
 static int
 has_vt(const struct broad *b, int v, int t)
@@ -140,7 +150,7 @@ run_checked(struct scene *sc, struct run *r)
 {
 	struct stepper *st;
 	struct step_failure bl;
-	struct broad grid, grid_seed, brute;
+	struct broad *grid = NULL, *grid_seed = NULL, *brute = NULL;
 	double frame = 1 / sc->output_rate, next = 0, *x0 = NULL;
 	long k = 0, motion = 0;
 	size_t nx;
@@ -154,9 +164,9 @@ run_checked(struct scene *sc, struct run *r)
 	if (r->cover_gap > 0) {
 		x0 = malloc(nx * sizeof *x0);
 		assert_non_null(x0);
-		broad_init(&grid, BROAD_GRID);
-		broad_init(&grid_seed, BROAD_GRID);
-		broad_init(&brute, BROAD_BRUTE);
+		grid = new_broad(BROAD_GRID);
+		grid_seed = new_broad(BROAD_GRID);
+		brute = new_broad(BROAD_BRUTE);
 		memcpy(x0, stepper_geom(st)->x0, nx * sizeof *x0);	/* obstacle vertices */
 	}
 	for (;;) {
@@ -181,7 +191,7 @@ run_checked(struct scene *sc, struct run *r)
 			memcpy(x1, stepper_x(st), 3 * (size_t)cloth_of(st)->n * sizeof *x1);
 			if (report_of(st).step > 0 && motion++ % 4 == 0) {
 				r->cover_hits += grid_covers_brute(sc->name, *g, x0, x1, report_of(st).cell,
-				    &grid, &grid_seed, &brute);
+				    grid, grid_seed, brute);
 				r->cover_motions++;
 			}
 			free(x0);
@@ -205,9 +215,9 @@ run_checked(struct scene *sc, struct run *r)
 	}
 	r->t_end = report_of(st).t;
 	if (r->cover_gap > 0) {
-		broad_free(&grid);
-		broad_free(&grid_seed);
-		broad_free(&brute);
+		broad_free(grid);
+		broad_free(grid_seed);
+		broad_free(brute);
 	}
 	free(x0);
 	stepper_free(st);
@@ -491,10 +501,10 @@ held_search(struct broad *b, struct geom g, const double *xa, const double *xb, 
     double cell, double near)
 {
 	struct broad_want want = collide_broad_want(NARROW_CCD, true);
-	struct broad fresh;
+	struct broad *fresh;
 	struct drape_err err;
 	double *box = malloc(6 * (size_t)g.nv * sizeof *box);
-	long uses = b->held_uses;
+	long uses = b->bvh.held_uses;
 	int v, k, served;
 
 	assert_non_null(box);
@@ -508,21 +518,21 @@ held_search(struct broad *b, struct geom g, const double *xa, const double *xb, 
 	g.vbox = box;
 	want.near = near;
 	want.near_motion = 1.5;
-	broad_init(&fresh, BROAD_BVH);
-	if (broad_find(b, &g, cell, &want, &err) != 0 || broad_find(&fresh, &g, cell, &want, &err) != 0)
+	fresh = new_broad(BROAD_BVH);
+	if (broad_find(b, &g, cell, &want, &err) != 0 || broad_find(fresh, &g, cell, &want, &err) != 0)
 		fail_msg("%s", err.msg);
-	served = b->held_uses > uses;
-	assert_int_equal(b->nvt, fresh.nvt);
-	assert_int_equal(b->nee, fresh.nee);
-	assert_true(b->nvt == 0 || memcmp(b->vt, fresh.vt, b->nvt * sizeof *b->vt) == 0);
-	assert_true(b->nee == 0 || memcmp(b->ee, fresh.ee, b->nee * sizeof *b->ee) == 0);
-	broad_free(&fresh);
+	served = b->bvh.held_uses > uses;
+	assert_int_equal(b->nvt, fresh->nvt);
+	assert_int_equal(b->nee, fresh->nee);
+	assert_true(b->nvt == 0 || memcmp(b->vt, fresh->vt, b->nvt * sizeof *b->vt) == 0);
+	assert_true(b->nee == 0 || memcmp(b->ee, fresh->ee, b->nee * sizeof *b->ee) == 0);
+	broad_free(fresh);
 	free(box);
 	return served;
 }
 
 /* bvh holds a traversal's pairs and serves later searches from them
- * (broad.c, "held pairs"): what they give must be exactly a traversal's.
+ * (broad_held.c): what they give must be exactly a traversal's.
  * The motions of a real run (the tablecloth falling on an icosahedron's
  * mesh and on itself), searched as the fast path does (a search with a
  * near test, then the check's over the motion made, with some vertices
@@ -534,7 +544,7 @@ test_bvh_held_pairs(void **state)
 	struct scene sc;
 	struct stepper *st;
 	struct step_failure f;
-	struct broad b;
+	struct broad *b;
 	double *xa, *xb, *xc;
 	size_t nx;
 	long served = 0, searches = 0, skinned = 0, step;
@@ -553,7 +563,7 @@ test_bvh_held_pairs(void **state)
 	assert_true(xa != NULL && xb != NULL && xc != NULL);
 	assert_true(stepper_geom(st)->nv > cloth_of(st)->n);	/* the mesh's vertices */
 	memcpy(xa, stepper_geom(st)->x0, nx * sizeof *xa);
-	broad_init(&b, BROAD_BVH);
+	b = new_broad(BROAD_BVH);
 	for (step = 0; !stepper_done(st); step++) {
 		const struct geom *g = stepper_geom(st);
 		double cell = report_of(st).cell;
@@ -565,7 +575,7 @@ test_bvh_held_pairs(void **state)
 		if (step % 5 == 0) {
 			/* the step's contacts, then its check with a few vertices
 			 * (one in 40) moved up to 5 mm beyond */
-			held_search(&b, *g, xa, xb, 0.8e-3, cell, 0.7e-3);
+			held_search(b, *g, xa, xb, 0.8e-3, cell, 0.7e-3);
 			memcpy(xc, xb, nx * sizeof *xc);
 			for (v = 0; v < cloth_of(st)->n; v++) {
 				rng = rng * 1103515245u + 12345u;
@@ -575,7 +585,7 @@ test_bvh_held_pairs(void **state)
 						xc[3 * v + k] += 5e-3 * ((double)((rng >> 16) % 2001) / 1000 - 1);
 					}
 			}
-			served += held_search(&b, *g, xa, xc, 0, cell, 0);
+			served += held_search(b, *g, xa, xc, 0, cell, 0);
 			/* short steps: two searches of the cloth moved 10 mm (the
 			 * first traversal serves none, so the second takes the
 			 * skin), then motions of a hundredth of a millimetre */
@@ -583,14 +593,14 @@ test_bvh_held_pairs(void **state)
 				memcpy(xc, xb, nx * sizeof *xc);
 				for (v = 0; v < cloth_of(st)->n; v++)
 					xc[3 * v + 1] += 1e-2 * (j + 1);
-				held_search(&b, *g, xc, xc, 0, cell, 0);
+				held_search(b, *g, xc, xc, 0, cell, 0);
 			}
-			skinned += b.held_skin > 0;
+			skinned += b->bvh.held_skin > 0;
 			memcpy(xb, xc, nx * sizeof *xb);
 			for (j = 0; j < 4; j++) {
 				for (v = 0; v < cloth_of(st)->n; v++)
 					xc[3 * v + 1] -= 1e-5;
-				served += held_search(&b, *g, xb, xc, 0, cell, 0);
+				served += held_search(b, *g, xb, xc, 0, cell, 0);
 				memcpy(xb, xc, nx * sizeof *xb);
 			}
 			searches += 5;
@@ -601,7 +611,7 @@ test_bvh_held_pairs(void **state)
 	    "each as a traversal's\n", served, searches, skinned);
 	assert_true(served > searches / 2);
 	assert_true(skinned > 0);
-	broad_free(&b);
+	broad_free(b);
 	free(xa);
 	free(xb);
 	free(xc);
@@ -609,7 +619,7 @@ test_bvh_held_pairs(void **state)
 	scene_free(&sc);
 }
 
-/* ---- flat patches (broad.c): what bvh leaves out must be harmless ---- */
+/* ---- flat patches (broad_flat.c): what bvh leaves out must be harmless ---- */
 
 #define PI 3.14159265358979323846
 
@@ -693,7 +703,7 @@ flat_search(struct broad *b, struct geom g, const double *x0, const double *x1, 
     double near)
 {
 	struct broad_want want = collide_broad_want(NARROW_CCD, true);
-	struct broad ref;
+	struct broad *ref;
 	struct geom plain = g;
 	struct drape_err err;
 	double *box = malloc(6 * (size_t)g.nv * sizeof *box);
@@ -714,30 +724,30 @@ flat_search(struct broad *b, struct geom g, const double *x0, const double *x1, 
 	plain.uv = NULL;
 	want.near = near;
 	want.near_motion = 1.5;
-	broad_init(&ref, BROAD_BVH);
-	if (broad_find(b, &g, 0.01, &want, &err) != 0 || broad_find(&ref, &plain, 0.01, &want, &err) != 0)
+	ref = new_broad(BROAD_BVH);
+	if (broad_find(b, &g, 0.01, &want, &err) != 0 || broad_find(ref, &plain, 0.01, &want, &err) != 0)
 		fail_msg("%s", err.msg);
-	for (i = j = 0; i < ref.nvt; i++) {
-		if (j < b->nvt && b->vt[j].v == ref.vt[i].v && b->vt[j].t == ref.vt[i].t) {
+	for (i = j = 0; i < ref->nvt; i++) {
+		if (j < b->nvt && b->vt[j].v == ref->vt[i].v && b->vt[j].t == ref->vt[i].t) {
 			j++;
 			continue;
 		}
 		{
-			const int *t = g.tri + 3 * ref.vt[i].t;
-			int vert[4] = { ref.vt[i].v, t[0], t[1], t[2] };
+			const int *t = g.tri + 3 * ref->vt[i].t;
+			int vert[4] = { ref->vt[i].v, t[0], t[1], t[2] };
 
 			assert_harmless(&g, vert, 1, near, 1.5);
 			out++;
 		}
 	}
 	assert_int_equal(j, b->nvt);	/* bvh's are the reference's, in order */
-	for (i = j = 0; i < ref.nee; i++) {
-		if (j < b->nee && b->ee[j].a == ref.ee[i].a && b->ee[j].b == ref.ee[i].b) {
+	for (i = j = 0; i < ref->nee; i++) {
+		if (j < b->nee && b->ee[j].a == ref->ee[i].a && b->ee[j].b == ref->ee[i].b) {
 			j++;
 			continue;
 		}
 		{
-			const int *ea = g.edge + 2 * ref.ee[i].a, *eb = g.edge + 2 * ref.ee[i].b;
+			const int *ea = g.edge + 2 * ref->ee[i].a, *eb = g.edge + 2 * ref->ee[i].b;
 			int vert[4] = { ea[0], ea[1], eb[0], eb[1] };
 
 			assert_harmless(&g, vert, 2, near, 1.5);
@@ -745,7 +755,7 @@ flat_search(struct broad *b, struct geom g, const double *x0, const double *x1, 
 		}
 	}
 	assert_int_equal(j, b->nee);
-	broad_free(&ref);
+	broad_free(ref);
 	free(box);
 	return out;
 }
@@ -793,13 +803,13 @@ in_culled(const struct broad *b, int ta, int tb)
 {
 	size_t k;
 
-	for (k = 0; k < b->ncull; k++) {
-		const struct bvh_node *p = &b->node[b->cull[k]];
+	for (k = 0; k < b->bvh.ncull; k++) {
+		const struct bvh_node *p = &b->bvh.node[b->bvh.cull[k]];
 		int i, a = 0, c = 0;
 
 		for (i = p->first; i < p->first + p->count; i++) {
-			a |= b->leaf_tri[i] == ta;
-			c |= b->leaf_tri[i] == tb;
+			a |= b->bvh.leaf_tri[i] == ta;
+			c |= b->bvh.leaf_tri[i] == tb;
 		}
 		if (a && c)
 			return 1;
@@ -816,7 +826,7 @@ static void
 recheck_after_held(const struct geom *g0, const struct cloth *cl)
 {
 	struct broad_want want = collide_broad_want(NARROW_CCD, true);
-	struct broad b, ref;
+	struct broad *b, *ref;
 	struct geom g = *g0, plain;
 	struct drape_err err;
 	int n = cl->n, p, i, j, k, fold = -1, wide = 0;
@@ -839,10 +849,10 @@ recheck_after_held(const struct geom *g0, const struct cloth *cl)
 	g.x0 = x0;
 	g.x1 = x1;
 	g.vbox = box;
-	broad_init(&b, BROAD_BVH);
+	b = new_broad(BROAD_BVH);
 	want.near = 0.6875e-3;
 	want.near_motion = 1.5;
-	if (broad_find(&b, &g, 0.01, &want, &err) != 0)	/* the step's contacts: held */
+	if (broad_find(b, &g, 0.01, &want, &err) != 0)	/* the step's contacts: held */
 		fail_msg("%s", err.msg);
 	/* the check: the nodes near (12, 12) may go 15 mm (a correction's
 	 * room), out of their held boxes; the cloth is still flat */
@@ -857,37 +867,37 @@ recheck_after_held(const struct geom *g0, const struct cloth *cl)
 			fold = p;
 	}
 	want.near = 0;
-	uses = b.held_uses;
-	if (broad_find(&b, &g, 0.01, &want, &err) != 0)
+	uses = b->bvh.held_uses;
+	if (broad_find(b, &g, 0.01, &want, &err) != 0)
 		fail_msg("%s", err.msg);
-	assert_true(b.held_uses > uses);	/* served by the held pairs */
-	assert_int_equal(b.ncull, 1);
+	assert_true(b->bvh.held_uses > uses);	/* served by the held pairs */
+	assert_int_equal(b->bvh.ncull, 1);
 	/* a correction folds a node over its neighbours, inside its box */
 	x1[3 * fold] -= 2.9e-3;
 	x1[3 * fold + 1] -= 1e-3;
 	changed[fold] = 1;
-	assert_int_equal(broad_recheck(&b, &g, changed), 1);
+	assert_int_equal(broad_recheck(b, &g, changed), 1);
 	plain = g;
 	plain.tri_square = NULL;
 	plain.uv = NULL;
-	broad_init(&ref, BROAD_BVH);
-	if (broad_find(&ref, &plain, 0.01, &want, &err) != 0)
+	ref = new_broad(BROAD_BVH);
+	if (broad_find(ref, &plain, 0.01, &want, &err) != 0)
 		fail_msg("%s", err.msg);
-	for (m = 0; m < ref.nvt; m++)
-		if (!has_vt(&b, ref.vt[m].v, ref.vt[m].t) &&
-		    !in_culled(&b, b.rep_vertex[ref.vt[m].v], ref.vt[m].t))
+	for (m = 0; m < ref->nvt; m++)
+		if (!has_vt(b, ref->vt[m].v, ref->vt[m].t) &&
+		    !in_culled(b, b->bvh.rep_vertex[ref->vt[m].v], ref->vt[m].t))
 			fail_msg("after the fold, vertex %d and triangle %d are missing",
-			    ref.vt[m].v, ref.vt[m].t);
-	for (m = 0; m < ref.nee; m++)
-		if (!has_ee(&b, ref.ee[m].a, ref.ee[m].b) &&
-		    !in_culled(&b, b.rep_edge[ref.ee[m].a], b.rep_edge[ref.ee[m].b]))
-			fail_msg("after the fold, edges %d and %d are missing", ref.ee[m].a,
-			    ref.ee[m].b);
+			    ref->vt[m].v, ref->vt[m].t);
+	for (m = 0; m < ref->nee; m++)
+		if (!has_ee(b, ref->ee[m].a, ref->ee[m].b) &&
+		    !in_culled(b, b->bvh.rep_edge[ref->ee[m].a], b->bvh.rep_edge[ref->ee[m].b]))
+			fail_msg("after the fold, edges %d and %d are missing", ref->ee[m].a,
+			    ref->ee[m].b);
 	print_message("flat patches: a fold after a check served by the held pairs (%d nodes "
 	    "out of their held boxes): %zu + %zu pairs, every one a traversal finds outside "
-	    "the patches still left out\n", wide, b.nvt, b.nee);
-	broad_free(&ref);
-	broad_free(&b);
+	    "the patches still left out\n", wide, b->nvt, b->nee);
+	broad_free(ref);
+	broad_free(b);
 	free(x0);
 	free(x1);
 	free(box);
@@ -905,7 +915,7 @@ test_flat_patches(void **state)
 {
 	struct scene sc;
 	struct stepper *st;
-	struct broad b;
+	struct broad *b;
 	const struct geom *g;
 	const struct cloth *cl;
 	double *x0, *x1, a[5][3] = { { 0, 0, 0 }, { 2e-3, 8e-3, 0.05 },
@@ -926,7 +936,7 @@ test_flat_patches(void **state)
 	x0 = malloc(3 * (size_t)n * sizeof *x0);
 	x1 = malloc(3 * (size_t)n * sizeof *x1);
 	assert_true(x0 != NULL && x1 != NULL);
-	broad_init(&b, BROAD_BVH);
+	b = new_broad(BROAD_BVH);
 
 	/* flat, moving as a whole: nothing to test at all */
 	for (p = 0; p < n; p++) {
@@ -935,12 +945,12 @@ test_flat_patches(void **state)
 		v3_store(x1 + 3 * p, shaped(0, 0, i * cl->h, j * cl->h, 0.35, v3(0.004, 0.09, 0)));
 	}
 	for (e = 0; e < 2; e++) {
-		long left = flat_search(&b, *g, x0, x1, e ? 1e-3 : 0, e ? 0.6875e-3 : 0);
+		long left = flat_search(b, *g, x0, x1, e ? 1e-3 : 0, e ? 0.6875e-3 : 0);
 
 		print_message("flat patches: a flat cloth moving as a whole, %s: none of the "
 		    "reference's %ld pairs\n", e ? "contacts" : "check", left);
-		assert_int_equal(b.nvt + b.nee, 0);
-		assert_int_equal(b.ncull, 1);	/* the whole cloth, at once */
+		assert_int_equal(b->nvt + b->nee, 0);
+		assert_int_equal(b->bvh.ncull, 1);	/* the whole cloth, at once */
 		assert_true(e || left > 1000);
 	}
 	/* bent every way */
@@ -963,9 +973,9 @@ test_flat_patches(void **state)
 				}
 				v3_store(x1 + 3 * p, q);
 			}
-			out += flat_search(&b, *g, x0, x1, 0, 0);
-			out += flat_search(&b, *g, x0, x1, 1e-3, 0.6875e-3);
-			out += flat_search(&b, *g, x0, x0, 0, 0.6875e-3);
+			out += flat_search(b, *g, x0, x1, 0, 0);
+			out += flat_search(b, *g, x0, x1, 1e-3, 0.6875e-3);
+			out += flat_search(b, *g, x0, x0, 0, 0.6875e-3);
 			searches += 3;
 		}
 	/* flat at the start, folded through itself at the end */
@@ -975,7 +985,7 @@ test_flat_patches(void **state)
 		v3_store(x1 + 3 * p, i <= 12 ? v3(i * cl->h, 0.099, j * cl->h) :
 		    v3((24 - i) * cl->h + 0.3e-3, 0.098, j * cl->h + 0.2e-3));
 	}
-	out += flat_search(&b, *g, x0, x1, 0, 0);
+	out += flat_search(b, *g, x0, x1, 0, 0);
 	searches++;
 	print_message("flat patches: %ld pairs left out in %ld searches of bent cloths, each "
 	    "harmless\n", out, searches);
@@ -1001,9 +1011,9 @@ test_flat_patches(void **state)
 		gg.x0 = x0;
 		gg.x1 = x1;
 		gg.vbox = box;
-		if (broad_find(&b, &gg, 0.01, &want, &err) != 0)
+		if (broad_find(b, &gg, 0.01, &want, &err) != 0)
 			fail_msg("%s", err.msg);
-		assert_int_equal(b.nvt + b.nee, 0);
+		assert_int_equal(b->nvt + b->nee, 0);
 		for (p = 0; p < n; p++) {
 			cloth_grid_ij(cl, p, &i, &j);
 			if (i <= 12)
@@ -1012,20 +1022,20 @@ test_flat_patches(void **state)
 			v3_store(x1 + 3 * p, v3((24 - i) * cl->h + 0.3e-3, 0.098, j * cl->h + 0.2e-3));
 			changed[p] = 1;
 		}
-		assert_int_equal(broad_recheck(&b, &gg, changed), 1);
+		assert_int_equal(broad_recheck(b, &gg, changed), 1);
 		{
-			struct broad ref;
+			struct broad *ref;
 			struct geom plain = gg;
 
 			plain.tri_square = NULL;
 			plain.uv = NULL;
-			broad_init(&ref, BROAD_BVH);
-			if (broad_find(&ref, &plain, 0.01, &want, &err) != 0)
+			ref = new_broad(BROAD_BVH);
+			if (broad_find(ref, &plain, 0.01, &want, &err) != 0)
 				fail_msg("%s", err.msg);
-			for (k = 0; k < ref.nvt; k++) {
-				const int *t = gg.tri + 3 * ref.vt[k].t;
+			for (k = 0; k < ref->nvt; k++) {
+				const int *t = gg.tri + 3 * ref->vt[k].t;
 				vec3 q0[4], q1[4];
-				int vert[4] = { ref.vt[k].v, t[0], t[1], t[2] }, m;
+				int vert[4] = { ref->vt[k].v, t[0], t[1], t[2] }, m;
 
 				for (m = 0; m < 4; m++) {
 					q0[m] = v3_load(x0 + 3 * vert[m]);
@@ -1034,10 +1044,10 @@ test_flat_patches(void **state)
 				if (!ccd_vertex_face(q0, q1, 0, NULL))
 					continue;
 				in_contact++;
-				if (!has_vt(&b, ref.vt[k].v, ref.vt[k].t))
+				if (!has_vt(b, ref->vt[k].v, ref->vt[k].t))
 					fail_msg("a pair in contact after the fold is missing");
 			}
-			broad_free(&ref);
+			broad_free(ref);
 		}
 		print_message("flat patches: %ld vertex-triangle pairs in contact after a fold, "
 		    "all given back\n", in_contact);
@@ -1046,7 +1056,7 @@ test_flat_patches(void **state)
 		free(box);
 	}
 	recheck_after_held(g, cl);
-	broad_free(&b);
+	broad_free(b);
 	free(x0);
 	free(x1);
 	stepper_free(st);

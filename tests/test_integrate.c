@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "jacobian.h"
+#include "stats.h"
 #include "testutil.h"
 #include "vec3.h"
 

@@ -13,6 +13,8 @@
 
 #include <cmocka.h>
 
+#include "cloth.h"
+#include "network.h"
 #include "scene.h"
 #include "stepper.h"
 

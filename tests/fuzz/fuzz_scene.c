@@ -20,6 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "forces.h"
 #include "ini.h"
 #include "scene.h"
 #include "stepper.h"

@@ -61,13 +61,6 @@ draw_floor(struct raster *r, const struct camera *cam, vec3 point, vec3 n)
 	}
 }
 
-static void
-grow(vec3 *lo, vec3 *hi, vec3 p)
-{
-	*lo = v3(fmin(lo->x, p.x), fmin(lo->y, p.y), fmin(lo->z, p.z));
-	*hi = v3(fmax(hi->x, p.x), fmax(hi->y, p.y), fmax(hi->z, p.z));
-}
-
 void
 view_frame(const struct scene *sc, const double *x, int n, vec3 *target, double *radius)
 {
@@ -76,21 +69,21 @@ view_frame(const struct scene *sc, const double *x, int n, vec3 *target, double 
 	int p;
 
 	for (p = 0; p < n; p++)
-		grow(&lo, &hi, v3_load(x + 3 * p));
+		v3_box_grow(&lo, &hi, v3_load(x + 3 * p));
 	mid = n > 0 ? v3_scale(v3_add(lo, hi), 0.5) : v3(0, 0, 0);
 	for (k = 0; k < sc->nobstacles; k++) {
 		const struct obstacle *o = &sc->obstacles[k];
 		vec3 olo, ohi;
 
 		if (o->kind == OBSTACLE_PLANE) {
-			grow(&lo, &hi, v3_madd(mid, o->normal, -v3_dot(v3_sub(mid, o->point),
+			v3_box_grow(&lo, &hi, v3_madd(mid, o->normal, -v3_dot(v3_sub(mid, o->point),
 			    o->normal)));
 			continue;
 		}
 		obstacle_bounds(o, &olo, &ohi);
 		if (isfinite(olo.x + olo.y + olo.z + ohi.x + ohi.y + ohi.z)) {
-			grow(&lo, &hi, olo);
-			grow(&lo, &hi, ohi);
+			v3_box_grow(&lo, &hi, olo);
+			v3_box_grow(&lo, &hi, ohi);
 		}
 	}
 	if (!(lo.x <= hi.x)) {
@@ -110,7 +103,7 @@ view_cloth_box(const double *x, int n, vec3 *lo, vec3 *hi)
 	int p;
 
 	for (p = 0; p < n; p++)
-		grow(lo, hi, v3_load(x + 3 * p));
+		v3_box_grow(lo, hi, v3_load(x + 3 * p));
 }
 
 void

@@ -6,6 +6,7 @@
 #include "bdf2.h"
 #include "collide.h"
 #include "contacts.h"
+#include "grow.h"
 #include "mg.h"
 #include "obstacle.h"
 #include "stop.h"
@@ -218,15 +219,8 @@ set_formula(struct bdf2 *b, double h, const double *y)
 static int
 add_obstacle_contact(struct bdf2 *b, const struct bdf2_obstacle_contact *c)
 {
-	if (b->noc == b->occap) {
-		size_t cap = b->occap ? 2 * b->occap : 64;
-		struct bdf2_obstacle_contact *p = realloc(b->oc, cap * sizeof *p);
-
-		if (p == NULL)
-			return -1;
-		b->oc = p;
-		b->occap = cap;
-	}
+	if (grow_array((void **)&b->oc, &b->occap, b->noc + 1, sizeof *b->oc) != 0)
+		return -1;
 	b->oc[b->noc++] = *c;
 	return 0;
 }

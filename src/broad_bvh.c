@@ -494,7 +494,7 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 	long visits = 0;
 	int *st;
 
-	if (grow((void **)&b->bvh.stack, &b->bvh.stackcap, 8, sizeof *b->bvh.stack) != 0)
+	if (grow_array((void **)&b->bvh.stack, &b->bvh.stackcap, 8, sizeof *b->bvh.stack) != 0)
 		return -1;
 	st = b->bvh.stack;
 	st[top++] = x;
@@ -503,7 +503,7 @@ bvh_traverse(struct broad *b, const struct geom *g, const struct broad_want *wan
 		const struct bvh_node *p, *q;
 
 		if (top + 6 > b->bvh.stackcap) {
-			if (grow((void **)&b->bvh.stack, &b->bvh.stackcap, top + 6, sizeof *b->bvh.stack) != 0)
+			if (grow_array((void **)&b->bvh.stack, &b->bvh.stackcap, top + 6, sizeof *b->bvh.stack) != 0)
 				return -1;
 			st = b->bvh.stack;
 		}
@@ -662,16 +662,16 @@ broad_find_bvh(struct broad *b, const struct geom *g, double cell, const struct 
 	size_t e, t;
 
 	if (bvh_prepare(b, g) != 0 ||
-	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0 ||
-	    grow((void **)&b->bvh.qbox, &b->bvh.qboxcap, 6 * (size_t)g->nv, sizeof *b->bvh.qbox) != 0 ||
-	    grow((void **)&b->bvh.ebox, &b->bvh.eboxcap, 6 * (g->nedges + 1), sizeof *b->bvh.ebox) != 0)
+	    grow_array((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0 ||
+	    grow_array((void **)&b->bvh.qbox, &b->bvh.qboxcap, 6 * (size_t)g->nv, sizeof *b->bvh.qbox) != 0 ||
+	    grow_array((void **)&b->bvh.ebox, &b->bvh.eboxcap, 6 * (g->nedges + 1), sizeof *b->bvh.ebox) != 0)
 		return -1;
 	b->st.cell = cell;
 	bvh_fill_query_boxes(b, g, want, 0);
 	if (want->near > 0) {
-		if (grow((void **)&b->bvh.vnear, &b->bvh.vnearcap, 6 * (size_t)g->nv, sizeof *b->bvh.vnear) != 0 ||
-		    grow((void **)&b->bvh.enear, &b->bvh.enearcap, 12 * (g->nedges + 1), sizeof *b->bvh.enear) != 0 ||
-		    grow((void **)&b->bvh.tnear, &b->bvh.tnearcap, 12 * (g->ntri + 1), sizeof *b->bvh.tnear) != 0)
+		if (grow_array((void **)&b->bvh.vnear, &b->bvh.vnearcap, 6 * (size_t)g->nv, sizeof *b->bvh.vnear) != 0 ||
+		    grow_array((void **)&b->bvh.enear, &b->bvh.enearcap, 12 * (g->nedges + 1), sizeof *b->bvh.enear) != 0 ||
+		    grow_array((void **)&b->bvh.tnear, &b->bvh.tnearcap, 12 * (g->ntri + 1), sizeof *b->bvh.tnear) != 0)
 			return -1;
 		for (v = 0; v < g->nv; v++)
 			for (k = 0; k < 3; k++) {

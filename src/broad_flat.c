@@ -102,8 +102,8 @@ bvh_cull_prepare(struct broad *b, const struct geom *g, const struct broad_want 
 	if (b->bvh.dminv == NULL || b->bvh.cloth_root < 0 || !want->self || !(g->uv_gap > 0))
 		return 0;
 	n = b->bvh.node[b->bvh.cloth_root].count;
-	if (grow((void **)&b->bvh.tdef, &b->bvh.tdefcap, 12 * (size_t)n, sizeof *b->bvh.tdef) != 0 ||
-	    grow((void **)&b->bvh.nsum, &b->bvh.nsumcap, 6 * (size_t)(2 * n), sizeof *b->bvh.nsum) != 0)
+	if (grow_array((void **)&b->bvh.tdef, &b->bvh.tdefcap, 12 * (size_t)n, sizeof *b->bvh.tdef) != 0 ||
+	    grow_array((void **)&b->bvh.nsum, &b->bvh.nsumcap, 6 * (size_t)(2 * n), sizeof *b->bvh.nsum) != 0)
 		return -1;
 	for (t = 0; t < n; t++) {
 		bvh_tri_deform(b, g, t, 0);
@@ -197,7 +197,7 @@ int
 bvh_push_cull(struct broad *b, int x)
 {
 	if (b->bvh.ncull == b->bvh.cullcap &&
-	    grow((void **)&b->bvh.cull, &b->bvh.cullcap, b->bvh.ncull + 1, sizeof *b->bvh.cull) != 0)
+	    grow_array((void **)&b->bvh.cull, &b->bvh.cullcap, b->bvh.ncull + 1, sizeof *b->bvh.cull) != 0)
 		return -1;
 	b->bvh.cull[b->bvh.ncull++] = x;
 	return 0;

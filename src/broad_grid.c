@@ -129,7 +129,7 @@ fill_boxes(struct broad *b, struct spatial_hash *h, size_t first, size_t count, 
 		b->grid.is_big[i] = n > limit;
 		if (n <= limit)
 			total += n;
-		else if (grow((void **)&b->grid.big, &b->grid.bigcap, b->grid.nbig + 1, sizeof *b->grid.big) != 0)
+		else if (grow_array((void **)&b->grid.big, &b->grid.bigcap, b->grid.nbig + 1, sizeof *b->grid.big) != 0)
 			return -1;
 		else
 			b->grid.big[b->grid.nbig++] = (int)i;
@@ -275,10 +275,10 @@ broad_find_grid(struct broad *b, const struct geom *g, double cell, const struct
 	double region[6], qb[6], skin = GRID_SKIN * cell;
 	int v, k;
 
-	if (grow((void **)&b->grid.box, &b->grid.boxcap, 6 * nbox, sizeof *b->grid.box) != 0 ||
-	    grow((void **)&b->grid.stamp, &b->grid.stampcap, nbox, sizeof *b->grid.stamp) != 0 ||
-	    grow((void **)&b->grid.is_big, &b->grid.is_bigcap, nbox, sizeof *b->grid.is_big) != 0 ||
-	    grow((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0)
+	if (grow_array((void **)&b->grid.box, &b->grid.boxcap, 6 * nbox, sizeof *b->grid.box) != 0 ||
+	    grow_array((void **)&b->grid.stamp, &b->grid.stampcap, nbox, sizeof *b->grid.stamp) != 0 ||
+	    grow_array((void **)&b->grid.is_big, &b->grid.is_bigcap, nbox, sizeof *b->grid.is_big) != 0 ||
+	    grow_array((void **)&b->allowed, &b->allowedcap, 6 * (size_t)g->nv, sizeof *b->allowed) != 0)
 		return -1;
 	fill_allowed(b, g, skin);
 	box_empty(region);

@@ -70,7 +70,7 @@ bvh_query(struct broad *b, const double *bx)
 {
 	size_t top = 0, n = 0;
 
-	if (grow((void **)&b->bvh.stack, &b->bvh.stackcap, 8, sizeof *b->bvh.stack) != 0)
+	if (grow_array((void **)&b->bvh.stack, &b->bvh.stackcap, 8, sizeof *b->bvh.stack) != 0)
 		return -1;
 	if (b->bvh.cloth_root >= 0)
 		b->bvh.stack[top++] = b->bvh.cloth_root;
@@ -83,13 +83,13 @@ bvh_query(struct broad *b, const double *bx)
 			continue;
 		if (bvh_leaf(p)) {
 			if (n == b->bvh.foundcap &&
-			    grow((void **)&b->bvh.found, &b->bvh.foundcap, n + 1, sizeof *b->bvh.found) != 0)
+			    grow_array((void **)&b->bvh.found, &b->bvh.foundcap, n + 1, sizeof *b->bvh.found) != 0)
 				return -1;
 			b->bvh.found[n++] = p->tri;
 			continue;
 		}
 		if (top + 2 > b->bvh.stackcap &&
-		    grow((void **)&b->bvh.stack, &b->bvh.stackcap, top + 2, sizeof *b->bvh.stack) != 0)
+		    grow_array((void **)&b->bvh.stack, &b->bvh.stackcap, top + 2, sizeof *b->bvh.stack) != 0)
 			return -1;
 		b->bvh.stack[top++] = p->left;
 		b->bvh.stack[top++] = p->right;
@@ -103,7 +103,7 @@ bvh_fill_tri_boxes(struct broad *b, const struct geom *g)
 {
 	size_t t;
 
-	if (grow((void **)&b->bvh.tbox, &b->bvh.tboxcap, 6 * (g->ntri + 1), sizeof *b->bvh.tbox) != 0)
+	if (grow_array((void **)&b->bvh.tbox, &b->bvh.tboxcap, 6 * (g->ntri + 1), sizeof *b->bvh.tbox) != 0)
 		return -1;
 	for (t = 0; t < g->ntri; t++)
 		bvh_tri_box(b->bvh.tbox + 6 * t, b, g, (int)t);
@@ -238,7 +238,7 @@ held_dirty(struct broad *b, const struct geom *g, const struct broad_want *want)
 	int *dv, *dt, *de;
 	int v;
 
-	if (grow((void **)&b->bvh.dlist, &b->bvh.dlistcap, (size_t)g->nv + g->ntri + g->nedges + 1,
+	if (grow_array((void **)&b->bvh.dlist, &b->bvh.dlistcap, (size_t)g->nv + g->ntri + g->nedges + 1,
 	    sizeof *b->bvh.dlist) != 0)
 		return -1;
 	dv = b->bvh.dlist;
@@ -403,7 +403,7 @@ find_held(struct broad *b, const struct geom *g, const struct broad_want *want)
 {
 	int v, ndirty = 0;
 
-	if (grow((void **)&b->bvh.dirty, &b->bvh.dirtycap, (size_t)g->nv, 1) != 0)
+	if (grow_array((void **)&b->bvh.dirty, &b->bvh.dirtycap, (size_t)g->nv, 1) != 0)
 		return -1;
 	for (v = 0; v < g->nv; v++) {
 		const double *a = b->allowed + 6 * v, *h = b->bvh.held_box + 6 * v;
@@ -486,7 +486,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	if (bvh_sort(b, g) != 0 ||
 	    grow_pairs(b, (void **)&b->bvh.held_vt, &b->bvh.held_vtcap, b->nvt + 1, sizeof *b->vt) != 0 ||
 	    grow_pairs(b, (void **)&b->bvh.held_ee, &b->bvh.held_eecap, b->nee + 1, sizeof *b->ee) != 0 ||
-	    grow((void **)&b->bvh.held_box, &b->bvh.held_boxcap, 6 * (size_t)g->nv,
+	    grow_array((void **)&b->bvh.held_box, &b->bvh.held_boxcap, 6 * (size_t)g->nv,
 	    sizeof *b->bvh.held_box) != 0)
 		return -1;
 	/* none found (a flat cloth's lists may never have been made):
@@ -498,7 +498,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	b->bvh.held_nvt = b->nvt;
 	b->bvh.held_nee = b->nee;
 	memcpy(b->bvh.held_box, b->allowed, 6 * (size_t)g->nv * sizeof *b->allowed);
-	if (grow((void **)&b->bvh.held_cull, &b->bvh.held_cullcap, b->bvh.ncull + 1, sizeof *b->bvh.held_cull) != 0)
+	if (grow_array((void **)&b->bvh.held_cull, &b->bvh.held_cullcap, b->bvh.ncull + 1, sizeof *b->bvh.held_cull) != 0)
 		return -1;
 	if (b->bvh.ncull > 0)
 		memcpy(b->bvh.held_cull, b->bvh.cull, b->bvh.ncull * sizeof *b->bvh.cull);
@@ -515,7 +515,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 		return 0;	/* the pairs found are the search's */
 	/* the search's own from the skinned ones: none is out of its box */
 	bvh_fill_query_boxes(b, g, want, 0);
-	if (grow((void **)&b->bvh.dirty, &b->bvh.dirtycap, (size_t)g->nv, 1) != 0)
+	if (grow_array((void **)&b->bvh.dirty, &b->bvh.dirtycap, (size_t)g->nv, 1) != 0)
 		return -1;
 	memset(b->bvh.dirty, 0, (size_t)g->nv);
 	return take_held(b, g, want, 0, false);

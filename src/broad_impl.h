@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "broad.h"
+#include "grow.h"
 #include "hash.h"
 #include "stop.h"
 
@@ -185,23 +186,6 @@ int bvh_judge_patch(struct broad *b, const struct geom *g, const struct broad_wa
 void bvh_fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_want *want,
     double skin);
 
-static inline int
-grow(void **p, size_t *cap, size_t need, size_t size)
-{
-	void *np;
-	size_t n = *cap ? *cap : 256;
-
-	if (need <= *cap)
-		return 0;
-	while (n < need)
-		n *= 2;
-	if (n > SIZE_MAX / size || (np = realloc(*p, n * size)) == NULL)
-		return -1;
-	*p = np;
-	*cap = n;
-	return 0;
-}
-
 /* The pair lists' bytes, for the memory limit. */
 static inline double
 pair_bytes(const struct broad *b)
@@ -219,7 +203,7 @@ grow_pairs(struct broad *b, void **p, size_t *cap, size_t need, size_t size)
 		b->over_memory = true;
 		return -1;
 	}
-	return grow(p, cap, need, size);
+	return grow_array(p, cap, need, size);
 }
 
 static inline int

@@ -11,6 +11,7 @@
 #include "ccd.h"
 #include "clock.h"
 #include "cmd.h"
+#include "grow.h"
 #include "narrow.h"
 
 #define MIN_TIME 0.05		/* s of timed queries, for a meaningful rate */
@@ -107,15 +108,9 @@ load(struct qfile *qf)
 			fprintf(stderr, "%s:%ld: %s\n", qf->path, lineno, why);
 			goto out;
 		}
-		if (qf->n == have) {
-			size_t want = have ? 2 * have : 64;
-
-			if ((q = realloc(qf->q, want * sizeof *q)) == NULL) {
-				fprintf(stderr, "drape ccd: %s: out of memory\n", qf->path);
-				goto out;
-			}
-			qf->q = q;
-			have = want;
+		if (grow_array((void **)&qf->q, &have, qf->n + 1, sizeof *qf->q) != 0) {
+			fprintf(stderr, "drape ccd: %s: out of memory\n", qf->path);
+			goto out;
 		}
 		q = &qf->q[qf->n];
 		r = (int)(nrows % 8);

@@ -88,8 +88,7 @@ write_obstacles(const char *path, const struct scene *sc, const float *x, size_t
 	for (i = 0; i < nodes; i++) {
 		vec3 p = v3(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
 
-		lo = v3(fmin(lo.x, p.x), fmin(lo.y, p.y), fmin(lo.z, p.z));
-		hi = v3(fmax(hi.x, p.x), fmax(hi.y, p.y), fmax(hi.z, p.z));
+		v3_box_grow(&lo, &hi, p);
 	}
 	c = v3_scale(v3_add(lo, hi), 0.5);
 	half = fmax(5 * v3_len(v3_sub(hi, lo)), 0.1);

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "collide_impl.h"
+#include "grow.h"
 
 /* Self-contact or obstacle meshes: the broad phase has pairs to find. */
 double
@@ -210,15 +211,8 @@ collide_add_event(struct collide *c, long step, int node, enum contact_type type
 {
 	struct contact_event *e;
 
-	if (c->nev == c->evcap) {
-		size_t cap = c->evcap ? 2 * c->evcap : 64;
-		struct contact_event *ne = realloc(c->ev, cap * sizeof *ne);
-
-		if (ne == NULL)
-			return -1;
-		c->ev = ne;
-		c->evcap = cap;
-	}
+	if (grow_array((void **)&c->ev, &c->evcap, c->nev + 1, sizeof *c->ev) != 0)
+		return -1;
 	e = &c->ev[c->nev++];
 	*e = (struct contact_event){ step, node, type, other, obstacle, q, n, vn_before, vn_after };
 	c->st.n[STAT_CONTACTS + type]++;

@@ -6,6 +6,7 @@
 
 #include "collide.h"
 #include "contacts.h"
+#include "grow.h"
 #include "vec3.h"
 
 void
@@ -145,15 +146,8 @@ separation(const vec3 p[4], const double w[4])
 static int
 add_pair(struct contacts *ct, const struct contact_pair *cp)
 {
-	if (ct->n == ct->cap) {
-		size_t cap = ct->cap ? 2 * ct->cap : 256;
-		struct contact_pair *p = realloc(ct->pair, cap * sizeof *p);
-
-		if (p == NULL)
-			return -1;
-		ct->pair = p;
-		ct->cap = cap;
-	}
+	if (grow_array((void **)&ct->pair, &ct->cap, ct->n + 1, sizeof *ct->pair) != 0)
+		return -1;
 	ct->pair[ct->n++] = *cp;
 	return 0;
 }

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "ini.h"
 
 char *
@@ -58,15 +59,9 @@ ini_parse(struct ini *ini, const char *name, const char *text, struct drape_err 
 
 		if (*s == '\0')
 			goto next;
-		if (ini->n == cap) {
-			struct ini_entry *ne;
-
-			cap = cap != 0 ? 2 * cap : 64;
-			if ((ne = realloc(ini->e, cap * sizeof *ne)) == NULL) {
-				err_set(err, "%s:%d: out of memory", name, line);
-				goto fail;
-			}
-			ini->e = ne;
+		if (grow_array((void **)&ini->e, &cap, ini->n + 1, sizeof *ini->e) != 0) {
+			err_set(err, "%s:%d: out of memory", name, line);
+			goto fail;
 		}
 		if (*s == '[') {
 			char *close = strchr(s, ']');

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "mesh.h"
 
 #define TOKEN_SHOWN 40		/* characters of a bad token put in a message */
@@ -63,21 +64,6 @@ skip_space(const char *s)
 	return s;
 }
 
-/* A capacity of at least `need` items of `size` bytes, doubling from cap;
- * 0 if that does not fit in a size_t. */
-static size_t
-grown(size_t cap, size_t need, size_t size)
-{
-	if (cap == 0)
-		cap = 64;
-	while (cap < need) {
-		if (cap > SIZE_MAX / 2)
-			return 0;
-		cap *= 2;
-	}
-	return cap > SIZE_MAX / size ? 0 : cap;
-}
-
 /* A number that fills the token at *s; *s moves past it. */
 static int
 read_number(struct reader *r, const char **s, const char *what, double *out)
@@ -113,15 +99,8 @@ read_vertex(struct reader *r, const char *s)
 			return -1;
 	if (m->nverts == OBJ_MAX_VERTICES)
 		return read_fail(r, "expected at most %d vertices", OBJ_MAX_VERTICES);
-	if ((size_t)m->nverts == r->xcap) {
-		size_t cap = grown(r->xcap, r->xcap + 1, 3 * sizeof *m->x);
-		double *x;
-
-		if (cap == 0 || (x = realloc(m->x, cap * 3 * sizeof *x)) == NULL)
-			return read_fail(r, "out of memory");
-		m->x = x;
-		r->xcap = cap;
-	}
+	if (grow_array((void **)&m->x, &r->xcap, (size_t)m->nverts + 1, 3 * sizeof *m->x) != 0)
+		return read_fail(r, "out of memory");
 	memcpy(m->x + 3 * (size_t)m->nverts, v, sizeof v);
 	m->nverts++;
 	return 0;
@@ -178,14 +157,8 @@ read_face(struct reader *r, const char *s)
 			if (m->ntri == OBJ_MAX_TRIANGLES)
 				return read_fail(r, "expected at most %d triangles (a polygon of n "
 				    "vertices makes n - 2)", OBJ_MAX_TRIANGLES);
-			if (m->ntri == r->tricap) {
-				size_t cap = grown(r->tricap, r->tricap + 1, 3 * sizeof *t);
-
-				if (cap == 0 || (t = realloc(m->tri, cap * 3 * sizeof *t)) == NULL)
-					return read_fail(r, "out of memory");
-				m->tri = t;
-				r->tricap = cap;
-			}
+			if (grow_array((void **)&m->tri, &r->tricap, m->ntri + 1, 3 * sizeof *t) != 0)
+				return read_fail(r, "out of memory");
 			t = m->tri + 3 * m->ntri++;
 			t[0] = first;
 			t[1] = prev;
@@ -417,8 +390,7 @@ mesh_bounds(const struct mesh *m, vec3 *lo, vec3 *hi)
 	for (v = 0; v < m->nverts; v++) {
 		vec3 x = v3_load(m->x + 3 * v);
 
-		*lo = v3(fmin(lo->x, x.x), fmin(lo->y, x.y), fmin(lo->z, x.z));
-		*hi = v3(fmax(hi->x, x.x), fmax(hi->y, x.y), fmax(hi->z, x.z));
+		v3_box_grow(lo, hi, x);
 	}
 }
 

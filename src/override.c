@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "ini.h"
 #include "override.h"
 
@@ -200,18 +201,9 @@ put(struct out *o, const char *s, size_t len, int from)
 {
 	if (o->oom)
 		return;
-	if (o->n + len + 2 > o->cap) {
-		size_t cap = o->cap ? o->cap : 4096;
-		char *p;
-
-		while (o->n + len + 2 > cap)
-			cap *= 2;
-		if ((p = realloc(o->p, cap)) == NULL) {
-			o->oom = true;
-			return;
-		}
-		o->p = p;
-		o->cap = cap;
+	if (grow_array((void **)&o->p, &o->cap, o->n + len + 2, 1) != 0) {
+		o->oom = true;
+		return;
 	}
 	if (o->nl == o->capl) {
 		int capl = o->capl ? 2 * o->capl : 256;

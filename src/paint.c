@@ -3,11 +3,8 @@
 #include <stdlib.h>
 
 #include "paint.h"
+#include "shape.h"
 
-#define SPHERE_SLICES 32
-#define SPHERE_STACKS 16
-#define DISC_SEGMENTS 48
-#define FLOOR_HALF 1.5		/* of the framed radius, each way */
 #define FLOOR_CELLS 8		/* about this many grid squares across */
 
 static const float floor_colour[3] = { 0.93f, 0.93f, 0.91f };
@@ -15,6 +12,7 @@ static const float shadow_colour[3] = { 0.80f, 0.80f, 0.78f };
 static const struct rgb grid_colour = { 196, 196, 190 };
 static const float solid_colour[3] = { 0.60f, 0.66f, 0.74f };
 static const struct rgb edge_colour = { 70, 78, 90 };
+static const struct shape_detail detail = { .slices = 32, .stacks = 16, .segments = 48 };
 
 /* The light, in view space (raster.h's), as a unit vector. */
 static vec3
@@ -67,14 +65,6 @@ flat(struct render *im, const struct camera *cam, vec3 a, vec3 b, vec3 c, const 
 	render_triangle(im, cam, &va, &vb, &vc, kind);
 }
 
-static void
-flat_quad(struct render *im, const struct camera *cam, vec3 a, vec3 b, vec3 c, vec3 d,
-    const float *base, double amb, enum cell_kind kind)
-{
-	flat(im, cam, a, b, c, base, amb, kind);
-	flat(im, cam, a, c, d, base, amb, kind);
-}
-
 /* Unlit: every vertex the same colour. */
 static void
 plain_quad(struct render *im, const struct camera *cam, vec3 a, vec3 b, vec3 c, vec3 d,
@@ -95,93 +85,49 @@ plain_quad(struct render *im, const struct camera *cam, vec3 a, vec3 b, vec3 c, 
 	render_triangle(im, cam, &v[0], &v[2], &v[3], kind);
 }
 
+struct face_ctx {
+	struct render *im;
+	const struct camera *cam;
+	bool cutaway;		/* leave out the faces towards the viewer */
+};
+
+/* A solid's face: flat, or lit at each corner by its own normal. */
 static void
-draw_box(struct render *im, const struct camera *cam, vec3 lo, vec3 hi)
+solid_face(void *ctx, const struct shape_face *f)
 {
-	static const int face[6][4] = {
-		{ 0, 1, 3, 2 }, { 4, 6, 7, 5 }, { 0, 4, 5, 1 },
-		{ 2, 3, 7, 6 }, { 0, 2, 6, 4 }, { 1, 5, 7, 3 },
-	};
-	vec3 p[8];
+	struct face_ctx *fc = ctx;
+	struct render_vertex v[4];
 	int k;
 
-	for (k = 0; k < 8; k++)
-		p[k] = v3(k & 4 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 1 ? hi.z : lo.z);
-	for (k = 0; k < 6; k++)
-		flat_quad(im, cam, p[face[k][0]], p[face[k][1]], p[face[k][2]], p[face[k][3]],
-		    solid_colour, 0.35, CELL_SOLID);
-}
-
-static vec3
-on_sphere(double rad, int slice, int stack)
-{
-	double th = 2 * V3_PI * slice / SPHERE_SLICES, ph = V3_PI * stack / SPHERE_STACKS;
-
-	return v3(rad * sin(ph) * cos(th), rad * cos(ph), rad * sin(ph) * sin(th));
-}
-
-static void
-draw_sphere(struct render *im, const struct camera *cam, vec3 c, double rad)
-{
-	int i, j, k;
-
-	for (j = 0; j < SPHERE_STACKS; j++)
-		for (i = 0; i < SPHERE_SLICES; i++) {
-			vec3 d[4] = { on_sphere(rad, i, j), on_sphere(rad, i + 1, j),
-				on_sphere(rad, i + 1, j + 1), on_sphere(rad, i, j + 1) };
-			struct render_vertex v[4];
-
-			for (k = 0; k < 4; k++)
-				v[k] = vertex(cam, v3_add(c, d[k]), d[k], solid_colour, 0.35, false);
-			render_triangle(im, cam, &v[0], &v[1], &v[2], CELL_SOLID);
-			render_triangle(im, cam, &v[0], &v[2], &v[3], CELL_SOLID);
-		}
-}
-
-/* A vertical cylinder whose top face is centred on c. */
-static void
-draw_disc(struct render *im, const struct camera *cam, vec3 c, double rad, double height)
-{
-	vec3 bottom = v3(c.x, c.y - height, c.z);
-	int k;
-
-	for (k = 0; k < DISC_SEGMENTS; k++) {
-		double a0 = 2 * V3_PI * k / DISC_SEGMENTS, a1 = 2 * V3_PI * (k + 1) / DISC_SEGMENTS;
-		vec3 d0 = v3(rad * cos(a0), 0, rad * sin(a0)), d1 = v3(rad * cos(a1), 0, rad * sin(a1));
-		vec3 t0 = v3_add(c, d0), t1 = v3_add(c, d1);
-		vec3 b0 = v3_add(bottom, d0), b1 = v3_add(bottom, d1);
-		struct render_vertex v[4] = {
-			vertex(cam, t0, d0, solid_colour, 0.35, false),
-			vertex(cam, b0, d0, solid_colour, 0.35, false),
-			vertex(cam, b1, d1, solid_colour, 0.35, false),
-			vertex(cam, t1, d1, solid_colour, 0.35, false),
-		};
-
-		flat(im, cam, c, t0, t1, solid_colour, 0.35, CELL_SOLID);
-		flat(im, cam, bottom, b1, b0, solid_colour, 0.35, CELL_SOLID);
-		render_triangle(im, cam, &v[0], &v[1], &v[2], CELL_SOLID);
-		render_triangle(im, cam, &v[0], &v[2], &v[3], CELL_SOLID);
+	if (fc->cutaway && view_dir(fc->cam, v3_cross(v3_sub(f->p[1], f->p[0]),
+	    v3_sub(f->p[2], f->p[0]))).z > 0)
+		return;
+	if (!f->smooth) {
+		flat(fc->im, fc->cam, f->p[0], f->p[1], f->p[2], solid_colour, 0.35, CELL_SOLID);
+		if (f->nv == 4)
+			flat(fc->im, fc->cam, f->p[0], f->p[2], f->p[3], solid_colour, 0.35,
+			    CELL_SOLID);
+		return;
 	}
+	for (k = 0; k < f->nv; k++)
+		v[k] = vertex(fc->cam, f->p[k], f->n[k], solid_colour, 0.35, false);
+	render_triangle(fc->im, fc->cam, &v[0], &v[1], &v[2], CELL_SOLID);
+	if (f->nv == 4)
+		render_triangle(fc->im, fc->cam, &v[0], &v[2], &v[3], CELL_SOLID);
 }
 
 /* Cut away (a node inside it): only the faces turned away from the viewer,
  * the inside of the far wall, and every edge. */
 static void
-draw_mesh(struct render *im, const struct camera *cam, const struct mesh *m, bool cutaway)
+draw_mesh(struct render *im, const struct camera *cam, const struct obstacle *o, bool cutaway)
 {
+	const struct mesh *m = &o->mesh;
+	struct face_ctx fc = { im, cam, cutaway };
 	double slack = 1e-3 * cam->radius;
 	size_t t;
 	int k;
 
-	for (t = 0; t < m->ntri; t++) {
-		vec3 p[3];
-
-		for (k = 0; k < 3; k++)
-			p[k] = v3_load(m->x + 3 * m->tri[3 * t + (size_t)k]);
-		if (cutaway && view_dir(cam, v3_cross(v3_sub(p[1], p[0]), v3_sub(p[2], p[0]))).z > 0)
-			continue;
-		flat(im, cam, p[0], p[1], p[2], solid_colour, 0.35, CELL_SOLID);
-	}
+	shape_obstacle(o, &detail, solid_face, &fc);
 	for (t = 0; t < m->ntri; t++)
 		for (k = 0; k < 3; k++)
 			render_line(im, cam, v3_load(m->x + 3 * m->tri[3 * t + (size_t)k]),
@@ -193,7 +139,7 @@ double
 paint_floor_spacing(const struct camera *cam)
 {
 	static const double steps[] = { 1, 2, 5 };
-	double want = 2 * FLOOR_HALF * cam->radius / cam->zoom / FLOOR_CELLS;
+	double want = 2 * SHAPE_FLOOR_HALF * cam->radius / cam->zoom / FLOOR_CELLS;
 	double p = pow(10, floor(log10(want)));
 	int k;
 
@@ -203,8 +149,7 @@ paint_floor_spacing(const struct camera *cam)
 	return 10 * p;
 }
 
-/* A square of the plane about the framed target, a little under the
- * surface (so that a cloth lying on it covers it): the floor, the cloth's
+/* shape_floor's square: the floor, the cloth's
  * shadow straight down onto it, and grid lines at multiples of the
  * spacing from the plane's point (fixed in the world, so that frames of
  * one run line up). */
@@ -212,19 +157,16 @@ static void
 draw_floor(struct render *im, const struct camera *cam, const struct obstacle *o,
     const struct cloth *cl, const double *x)
 {
-	double half = FLOOR_HALF * cam->radius, sink = 2e-3 * cam->radius;
-	double step = paint_floor_spacing(cam), a, b;
-	vec3 n = o->normal, u, w;
-	vec3 c = v3_madd(cam->target, n, -v3_dot(v3_sub(cam->target, o->point), n));
-	vec3 under = v3_madd(c, n, -sink), lines;
-	double cu, cw;
+	struct shape_floor fl;
+	double half, sink, step = paint_floor_spacing(cam), a, b, cu, cw;
+	vec3 n = o->normal, u, w, c, lines;
 	size_t t;
 	int k;
 
-	v3_tangents(n, &u, &w);
-	plain_quad(im, cam, v3_madd(v3_madd(under, u, -half), w, -half),
-	    v3_madd(v3_madd(under, u, half), w, -half), v3_madd(v3_madd(under, u, half), w, half),
-	    v3_madd(v3_madd(under, u, -half), w, half), floor_colour, 0, CELL_FLOOR);
+	shape_floor(cam, o->point, n, &fl);
+	half = fl.half, sink = fl.sink, u = fl.u, w = fl.w, c = fl.c;
+	plain_quad(im, cam, fl.corner[0], fl.corner[1], fl.corner[2], fl.corner[3], floor_colour,
+	    0, CELL_FLOOR);
 	for (t = 0; t < cl->ntri; t++) {
 		struct render_vertex v[3];
 
@@ -276,6 +218,7 @@ paint_scene(struct render *im, const struct camera *cam, const struct scene *sc,
 	vec3 *normal = calloc(n, sizeof *normal);
 	double amb = o->unlit ? -1 : o->colouring == COLOUR_SHADE ? 0.30 : 0.55;
 	double px = cam->zoom * fmin((double)im->w, im->h * im->aspect) / (2 * cam->radius);
+	struct face_ctx fc = { im, cam, false };
 	int j, p;
 
 	if (normal == NULL)
@@ -284,23 +227,12 @@ paint_scene(struct render *im, const struct camera *cam, const struct scene *sc,
 	for (k = 0; k < sc->nobstacles; k++) {
 		const struct obstacle *ob = &sc->obstacles[k];
 
-		switch (ob->kind) {
-		case OBSTACLE_PLANE:
+		if (ob->kind == OBSTACLE_PLANE)
 			draw_floor(im, cam, ob, cl, x);
-			break;
-		case OBSTACLE_BOX:
-			draw_box(im, cam, ob->lo, ob->hi);
-			break;
-		case OBSTACLE_SPHERE:
-			draw_sphere(im, cam, ob->centre, ob->radius);
-			break;
-		case OBSTACLE_DISC:
-			draw_disc(im, cam, ob->centre, ob->radius, ob->height);
-			break;
-		case OBSTACLE_MESH:
-			draw_mesh(im, cam, &ob->mesh, holds_a_node(ob, cl, x));
-			break;
-		}
+		else if (ob->kind == OBSTACLE_MESH)
+			draw_mesh(im, cam, ob, holds_a_node(ob, cl, x));
+		else
+			shape_obstacle(ob, &detail, solid_face, &fc);
 	}
 	/* the cloth, a little nearer than it is: a coarse cloth lying on a
 	 * solid cuts through its edges (a straight triangle over a corner),

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "config.h"
+#include "grow.h"
 #include "record.h"
 #include "replay_events.h"
 #include "replay_run.h"
@@ -155,18 +156,9 @@ recompute(struct replay_events *re, size_t i, struct replay_steps *ss, struct dr
 			mismatch(re, err, what);
 			goto fail;
 		}
-		if (s.nev > 0 && nev + (size_t)s.nev > cap) {
-			size_t ncap = cap ? cap : 1024;
-			struct contact_event *p;
-
-			while (ncap < nev + (size_t)s.nev)
-				ncap *= 2;
-			if ((p = realloc(ev, ncap * sizeof *p)) == NULL) {
-				err_set(err, "out of memory");
-				goto fail;
-			}
-			ev = p;
-			cap = ncap;
+		if (grow_array((void **)&ev, &cap, nev + (size_t)s.nev, sizeof *ev) != 0) {
+			err_set(err, "out of memory");
+			goto fail;
 		}
 		if (s.nev > 0)
 			memcpy(ev + nev, r.ev, (size_t)s.nev * sizeof *ev);

@@ -13,6 +13,7 @@
 #include <zlib.h>
 
 #include "frame_codec.h"
+#include "grow.h"
 #include "outfile.h"
 #include "replay_impl.h"
 
@@ -150,14 +151,8 @@ add_chunk(struct replay *r, const struct replay_chunk_header *h, uint64_t off, s
 {
 	struct replay_chunk *c;
 
-	if (r->nchunks == *cap) {
-		size_t ncap = *cap ? 2 * *cap : 64;
-
-		if ((c = realloc(r->chunk, ncap * sizeof *c)) == NULL)
-			return -1;
-		r->chunk = c;
-		*cap = ncap;
-	}
+	if (grow_array((void **)&r->chunk, cap, r->nchunks + 1, sizeof *r->chunk) != 0)
+		return -1;
 	c = &r->chunk[r->nchunks++];
 	c->kind = h->kind;
 	c->first_step = h->first_step;

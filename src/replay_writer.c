@@ -14,22 +14,9 @@
 
 #include "clock.h"
 #include "frame_codec.h"
+#include "grow.h"
 #include "outfile.h"
 #include "replay_impl.h"
-
-static int
-grow(unsigned char **buf, size_t *cap, size_t need)
-{
-	unsigned char *p;
-
-	if (need <= *cap)
-		return 0;
-	if ((p = realloc(*buf, need)) == NULL)
-		return -1;
-	*buf = p;
-	*cap = need;
-	return 0;
-}
 
 static int
 write_fail(struct replay_writer *w, struct drape_err *err)
@@ -107,7 +94,8 @@ job_deflate(void *arg)
 {
 	struct replay_job *j = arg;
 
-	j->zlen = (uLongf)j->zcap;
+	/* the buffer may have doubled past what deflate_all's uInt holds */
+	j->zlen = (uLongf)(j->zcap < UINT_MAX ? j->zcap : UINT_MAX);
 	j->rc = deflate_all(j->z, &j->zlen, j->raw, j->raw_len, j->level, j->strategy);
 	return NULL;
 }
@@ -230,7 +218,8 @@ write_chunk(struct replay_writer *w, uint32_t kind, uint64_t first_step, uint32_
 		return -1;
 	j = &q->job[(q->first + q->n) % JOBS];
 	zcap = compressBound((uLong)raw_len);
-	if (grow(&j->raw, &j->rawcap, raw_len + 1) != 0 || grow(&j->z, &j->zcap, zcap) != 0) {
+	if (grow_array((void **)&j->raw, &j->rawcap, raw_len + 1, 1) != 0 ||
+	    grow_array((void **)&j->z, &j->zcap, zcap, 1) != 0) {
 		err_set(err, "%s: out of memory", w->path);
 		return -1;
 	}
@@ -311,7 +300,7 @@ write_meta(struct replay_writer *w, const struct replay_meta *m, struct drape_er
 		err_set(err, "%s: the scene text is too long to record", w->path);
 		return -1;
 	}
-	if (grow(&w->buf, &w->bufcap, len) != 0) {
+	if (grow_array((void **)&w->buf, &w->bufcap, len, 1) != 0) {
 		err_set(err, "%s: out of memory", w->path);
 		return -1;
 	}
@@ -446,7 +435,7 @@ flush_frames(struct replay_writer *w, bool keep, struct drape_err *err)
 
 	if (k == 0)
 		return 0;
-	if (grow(&w->buf, &w->bufcap, len) != 0 || (tmp = malloc(k * n3 * 4)) == NULL) {
+	if (grow_array((void **)&w->buf, &w->bufcap, len, 1) != 0 || (tmp = malloc(k * n3 * 4)) == NULL) {
 		err_set(err, "%s: out of memory", w->path);
 		return -1;
 	}
@@ -514,26 +503,18 @@ write_keyframe_once(struct replay_writer *w, long step, double t, double dt, con
     const double *hist, uint64_t hash, struct drape_err *err)
 {
 	size_t n6 = 6 * (size_t)w->nodes, len = 32 + 8 * n6 * (hist != NULL ? 2 : 1);
+	size_t kcap;
 
-	if (grow(&w->buf, &w->bufcap, len) != 0) {
+	if (grow_array((void **)&w->buf, &w->bufcap, len, 1) != 0) {
 		err_set(err, "%s: out of memory", w->path);
 		return -1;
 	}
-	if (w->nkey == w->keycap) {
-		size_t cap = w->keycap ? 2 * w->keycap : 16;
-		uint64_t *a = realloc(w->kstep, cap * sizeof *a), *b;
-
-		if (a == NULL) {
-			err_set(err, "%s: out of memory", w->path);
-			return -1;
-		}
-		w->kstep = a;
-		if ((b = realloc(w->koff, cap * sizeof *b)) == NULL) {
-			err_set(err, "%s: out of memory", w->path);
-			return -1;
-		}
-		w->koff = b;
-		w->keycap = cap;
+	/* kstep and koff grow together: koff's capacity is the one kept */
+	kcap = w->keycap;
+	if (grow_array((void **)&w->kstep, &kcap, w->nkey + 1, sizeof *w->kstep) != 0 ||
+	    grow_array((void **)&w->koff, &w->keycap, w->nkey + 1, sizeof *w->koff) != 0) {
+		err_set(err, "%s: out of memory", w->path);
+		return -1;
 	}
 	put64(w->buf, (uint64_t)step);
 	put64(w->buf + 8, dbits(t));
@@ -603,7 +584,7 @@ flush_steps(struct replay_writer *w, bool keep, struct drape_err *err)
 	if (k == 0)
 		return 0;
 	first = (uint64_t)w->steps[0].step;
-	if (grow(&w->buf, &w->bufcap, len) != 0 ||
+	if (grow_array((void **)&w->buf, &w->bufcap, len, 1) != 0 ||
 	    (words = malloc(k * NSTAT * sizeof *words)) == NULL ||
 	    (tmp32 = malloc((nstored + 1) * sizeof *tmp32)) == NULL ||
 	    (tmp64 = malloc((nstored > k ? nstored : k) * sizeof *tmp64)) == NULL) {
@@ -647,18 +628,9 @@ write_step_once(struct replay_writer *w, const struct replay_step *s,
 
 	if (!w->events_stored)
 		w->digest = replay_digest_events(w->digest, ev, nev);
-	else if (nev > 0 && w->nev + nev > w->evcap) {
-		size_t cap = w->evcap ? w->evcap : 1024;
-		struct contact_event *p;
-
-		while (cap < w->nev + nev)
-			cap *= 2;
-		if ((p = realloc(w->ev, cap * sizeof *p)) == NULL) {
-			err_set(err, "%s: out of memory", w->path);
-			return -1;
-		}
-		w->ev = p;
-		w->evcap = cap;
+	else if (grow_array((void **)&w->ev, &w->evcap, w->nev + nev, sizeof *w->ev) != 0) {
+		err_set(err, "%s: out of memory", w->path);
+		return -1;
 	}
 	if (nev > 0 && w->events_stored)
 		memcpy(w->ev + w->nev, ev, nev * sizeof *ev);
@@ -760,7 +732,7 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 	job_finish(w, NULL);	/* given up after an error: the threads joined */
 	if (rc == 0 && !w->failed) {
 		index_off = w->bytes;
-		if (grow(&w->buf, &w->bufcap, 16 * w->nkey + 1) != 0) {
+		if (grow_array((void **)&w->buf, &w->bufcap, 16 * w->nkey + 1, 1) != 0) {
 			err_set(err, "%s: out of memory", w->path);
 			rc = -1;
 		} else {

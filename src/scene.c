@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "cloth.h"
+#include "grow.h"
 #include "ini.h"
 #include "override.h"
 #include "replay.h"
@@ -508,15 +509,8 @@ read_cloth(struct pctx *c, const struct group *g)
 static int
 add_raw(struct pctx *c, int line, int is_load, size_t index, const char *text)
 {
-	if (c->nraw == c->rawcap) {
-		size_t cap = c->rawcap ? 2 * c->rawcap : 16;
-		struct raw_sel *r = realloc(c->raw, cap * sizeof *r);
-
-		if (r == NULL)
-			return fail(c, line, "out of memory");
-		c->raw = r;
-		c->rawcap = cap;
-	}
+	if (grow_array((void **)&c->raw, &c->rawcap, c->nraw + 1, sizeof *c->raw) != 0)
+		return fail(c, line, "out of memory");
 	c->raw[c->nraw] = (struct raw_sel){ line, is_load, index, xstrdup(text) };
 	if (c->raw[c->nraw].text == NULL)
 		return fail(c, line, "out of memory");
@@ -987,28 +981,17 @@ read_obstacle(struct pctx *c, const struct group *g)
 
 /* ---- the whole file ---- */
 
-static void
-box_grow(double lo[3], double hi[3], const double p[3])
-{
-	int k;
-
-	for (k = 0; k < 3; k++) {
-		lo[k] = fmin(lo[k], p[k]);
-		hi[k] = fmax(hi[k], p[k]);
-	}
-}
-
 /* The cubes of edge cell that [lo, hi] spans along each axis (as hash.c
  * counts them) and in all: the first axis past SCENE_MAX_CELLS, 3 if the
  * product is past SCENE_MAX_BOX_CELLS, or -1. */
 static int
-too_many_cells(const double lo[3], const double hi[3], double cell, double *cubes)
+too_many_cells(vec3 lo, vec3 hi, double cell, double *cubes)
 {
-	double all = 1;
+	double ext[3] = { hi.x - lo.x, hi.y - lo.y, hi.z - lo.z }, all = 1;
 	int k;
 
 	for (k = 0; k < 3; k++) {
-		*cubes = floor((hi[k] - lo[k]) / cell) + 1;
+		*cubes = floor(ext[k] / cell) + 1;
 		if (!(*cubes <= SCENE_MAX_CELLS))
 			return k;
 		all *= *cubes;
@@ -1039,7 +1022,8 @@ static int
 check_hash_extent(struct pctx *c)
 {
 	const struct scene *sc = c->sc;
-	double lo[3], hi[3], p[3], cell = sc->col.cell > 0 ? sc->col.cell : sc->spacing, cubes;
+	double p[3], cell = sc->col.cell > 0 ? sc->col.cell : sc->spacing, cubes;
+	vec3 lo, hi;
 	size_t o;
 	int k, v, axis;
 
@@ -1047,12 +1031,11 @@ check_hash_extent(struct pctx *c)
 	 * never refused for its bound */
 	if (!collide_uses_hash(sc))
 		return 0;
-	for (k = 0; k < 3; k++) {
-		lo[k] = hi[k] = sc->origin[k];
+	for (k = 0; k < 3; k++)
 		p[k] = sc->origin[k] + sc->spacing * ((sc->nu - 1) * sc->warp_axis[k] +
 		    (sc->nv - 1) * sc->weft_axis[k]);
-	}
-	box_grow(lo, hi, p);
+	lo = hi = v3_load(sc->origin);
+	v3_box_grow(&lo, &hi, v3_load(p));
 	if ((axis = too_many_cells(lo, hi, cell, &cubes)) >= 0)
 		return fail(c, c->cell_line, "cell: the cloth spans %.3g cubes of %g m %s; "
 		    "expected at most %d along an axis and %.4g in all (the spatial hash's "
@@ -1064,7 +1047,7 @@ check_hash_extent(struct pctx *c)
 		if (ob->kind != OBSTACLE_MESH)
 			continue;
 		for (v = 0; v < ob->mesh.nverts; v++)
-			box_grow(lo, hi, ob->mesh.x + 3 * v);
+			v3_box_grow(&lo, &hi, v3_load(ob->mesh.x + 3 * v));
 		if ((axis = too_many_cells(lo, hi, cell, &cubes)) >= 0)
 			return fail(c, ob->line, "with this mesh the cloth and the obstacles span "
 			    "%.3g cubes of %g m (%s) %s; expected at most %d along an axis and %.4g "

@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "grow.h"
 #include "replay_run.h"
 #include "source.h"
 
@@ -67,15 +68,8 @@ add_view(struct source_replay *sr, size_t *cap, long step, double t, size_t chun
 {
 	if (step < 0 || step > STEP_MAX)
 		return 0;
-	if (sr->nviews == *cap) {
-		size_t ncap = *cap ? 2 * *cap : 64;
-		struct replay_view *v = realloc(sr->view, ncap * sizeof *v);
-
-		if (v == NULL)
-			return -1;
-		sr->view = v;
-		*cap = ncap;
-	}
+	if (grow_array((void **)&sr->view, cap, sr->nviews + 1, sizeof *sr->view) != 0)
+		return -1;
 	sr->view[sr->nviews++] = (struct replay_view){ step, t, chunk, k, key };
 	return 0;
 }
@@ -155,16 +149,10 @@ index_chunks(struct source_replay *sr, struct drape_err *err)
 				replay_steps_free(&ss);
 				continue;
 			}
-			if (sr->nsteps == scap) {
-				size_t ncap = scap ? 2 * scap : 16;
-				struct replay_stepchunk *p = realloc(sr->steps, ncap * sizeof *p);
-
-				if (p == NULL) {
-					replay_steps_free(&ss);
-					goto oom;
-				}
-				sr->steps = p;
-				scap = ncap;
+			if (grow_array((void **)&sr->steps, &scap, sr->nsteps + 1,
+			    sizeof *sr->steps) != 0) {
+				replay_steps_free(&ss);
+				goto oom;
 			}
 			/* the statistics kept */
 			sr->steps[sr->nsteps++] = (struct replay_stepchunk){ i, ss.count, ss.s };

@@ -58,6 +58,17 @@ v3_closest_on_segments(vec3 p0, vec3 p1, vec3 q0, vec3 q1, double *s, double *u)
 	}
 }
 
+/* The box [*lo, *hi] grown to hold p; fmin and fmax pass over a NaN
+ * coordinate, so that a blown-up node leaves the box as it was (start
+ * from +INFINITY and -INFINITY). ccd.c keeps ternaries of its own, in its
+ * hot path, where a NaN must spoil the box. */
+static inline void
+v3_box_grow(vec3 *lo, vec3 *hi, vec3 p)
+{
+	*lo = v3(fmin(lo->x, p.x), fmin(lo->y, p.y), fmin(lo->z, p.z));
+	*hi = v3(fmax(hi->x, p.x), fmax(hi->y, p.y), fmax(hi->z, p.z));
+}
+
 /* Two unit vectors across the plane of normal n (the pictures' and the
  * terminal's floor grids). */
 static inline void

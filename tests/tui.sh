@@ -249,8 +249,8 @@ fi
 # One seek per burst, counted: a digest's events are recomputed a chunk
 # (50 steps here) at a time, the collisions panel says how many steps so
 # far. End, then three PgUp typed while End's chunk is recomputed, must
-# recompute what End then g 50 do (End's chunk and step 50's: 100 steps);
-# a seek per key recomputes the two chunks between too (200).
+# recompute at most what End then g 50 do (End's chunk and step 50's: 100
+# steps); a seek per key recomputes the two chunks between too (200).
 recomputed_at_50() { # keys after End, typed at once or after End has settled
 	tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || { fail "tmux"; return; }
 	recomputed_session "$1"
@@ -278,7 +278,9 @@ echo "== replay: one seek per burst of keys"
 recomputed_at_50 burst
 recomputed_at_50 direct
 if [ -s "$tmp/recomputed.burst" ] && [ -s "$tmp/recomputed.direct" ]; then
-	[ "$(cat "$tmp/recomputed.burst")" = "$(cat "$tmp/recomputed.direct")" ] ||
+	# at most: End read with the PgUps (a loaded machine) is one seek
+	# to step 50 alone, 50 steps
+	[ "$(cat "$tmp/recomputed.burst")" -le "$(cat "$tmp/recomputed.direct")" ] ||
 		fail "a burst of three PgUp after End recomputed $(cat "$tmp/recomputed.burst")" \
 		    "steps where End and g 50 recompute $(cat "$tmp/recomputed.direct"): a seek a key"
 else
@@ -530,6 +532,9 @@ tm new-session -d -s t -x 80 -y 24 "env PS1='prompt\$ ' sh" || fail "tmux"
 if wait_for 'prompt\$'; then
 	tm send-keys -t t "'$DRAPE' run '$top/scenes/tablecloth.scene'; echo EXIT=\$?" Enter
 	if wait_for 'E [0-9.e+-]*J 1x.* running'; then
+		# polled to the key line: a capture can fall within a redraw
+		# (blank there once, the machine loaded by a distcheck)
+		wait_for '^\? help  q quit'
 		[ "$(tail -n 1 "$tmp/screen")" = "? help  q quit  space run/pause  +/- speed  * max  n step  f follow  z/Z zoom" ] ||
 			fail "the key line at 80 columns: '$(tail -n 1 "$tmp/screen")'"
 		tm send-keys -t t +

@@ -153,9 +153,10 @@ slurp_file(const char *path, size_t *len)
 	n = ftell(f);
 	assert_true(n > 0);
 	rewind(f);
-	buf = malloc((size_t)n);
+	buf = malloc((size_t)n + 1);	/* a NUL after the bytes: text is read as a string */
 	assert_non_null(buf);
 	assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
+	buf[n] = '\0';
 	fclose(f);
 	*len = (size_t)n;
 	return buf;

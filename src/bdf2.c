@@ -847,21 +847,6 @@ system_mul(const struct bdf2 *b, const double *p, double *out)
 	pair_mul(b, p, out);
 }
 
-/* b <- b^-1 for a symmetric positive definite 3 x 3 block. */
-static void
-invert3(double *m)
-{
-	double c0 = m[4] * m[8] - m[5] * m[7], c1 = m[5] * m[6] - m[3] * m[8];
-	double c2 = m[3] * m[7] - m[4] * m[6], det = m[0] * c0 + m[1] * c1 + m[2] * c2;
-	double r[9] = { c0, m[2] * m[7] - m[1] * m[8], m[1] * m[5] - m[2] * m[4],
-	    c1, m[0] * m[8] - m[2] * m[6], m[2] * m[3] - m[0] * m[5],
-	    c2, m[1] * m[6] - m[0] * m[7], m[0] * m[4] - m[1] * m[3] };
-	int i;
-
-	for (i = 0; i < 9; i++)
-		m[i] = r[i] / det;
-}
-
 /* The preconditioner of H: its multigrid, or where that fails (H not
  * positive definite to it) its 3 x 3 diagonal blocks inverted. */
 static void
@@ -876,7 +861,7 @@ precondition_setup(struct bdf2 *b)
 
 	for (p = 0; p < b->H.n; p++) {
 		memcpy(b->pre + 9 * p, b->H.val + 9 * (size_t)b->H.diag[p], 9 * sizeof *b->pre);
-		invert3(b->pre + 9 * p);
+		block_invert_spd(b->pre + 9 * p);
 	}
 }
 
@@ -890,13 +875,8 @@ precondition(struct bdf2 *b, const double *r, double *z)
 		return;
 	}
 
-	for (p = 0; p < b->H.n; p++) {
-		const double *m = b->pre + 9 * p, *rp = r + 3 * p;
-
-		z[3 * p] = m[0] * rp[0] + m[1] * rp[1] + m[2] * rp[2];
-		z[3 * p + 1] = m[3] * rp[0] + m[4] * rp[1] + m[5] * rp[2];
-		z[3 * p + 2] = m[6] * rp[0] + m[7] * rp[1] + m[8] * rp[2];
-	}
+	for (p = 0; p < b->H.n; p++)
+		block_apply(b->pre + 9 * p, r + 3 * p, z + 3 * p);
 }
 
 static double

@@ -40,4 +40,29 @@ int blockmat_find(const struct blockmat *A, int row, int col);
 /* y = A x (3n each); y must not alias x. */
 void blockmat_mul(const struct blockmat *A, const double *x, double *y);
 
+/* One block b <- b^-1, b symmetric positive definite (the cofactors over
+ * the determinant): the block Jacobi preconditioners' setup. */
+static inline void
+block_invert_spd(double *b)
+{
+	double c0 = b[4] * b[8] - b[5] * b[7], c1 = b[5] * b[6] - b[3] * b[8];
+	double c2 = b[3] * b[7] - b[4] * b[6], det = b[0] * c0 + b[1] * c1 + b[2] * c2;
+	double r[9] = { c0, b[2] * b[7] - b[1] * b[8], b[1] * b[5] - b[2] * b[4],
+	    c1, b[0] * b[8] - b[2] * b[6], b[2] * b[3] - b[0] * b[5],
+	    c2, b[1] * b[6] - b[0] * b[7], b[0] * b[4] - b[1] * b[3] };
+	int i;
+
+	for (i = 0; i < 9; i++)
+		b[i] = r[i] / det;
+}
+
+/* z = b r for one block b (row-major) and 3-vectors r, z. */
+static inline void
+block_apply(const double *b, const double *r, double *z)
+{
+	z[0] = b[0] * r[0] + b[1] * r[1] + b[2] * r[2];
+	z[1] = b[3] * r[0] + b[4] * r[1] + b[5] * r[2];
+	z[2] = b[6] * r[0] + b[7] * r[1] + b[8] * r[2];
+}
+
 #endif

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "blockmat.h"
 #include "implicit.h"
 #include "stop.h"
 #include "vec3.h"
@@ -185,22 +186,6 @@ system_mul(const struct implicit *im, double h, const double *w, double *out)
 	filter(im, out);
 }
 
-/* b <- b^-1 for a symmetric positive definite 3 x 3 block (the cofactors
- * over the determinant). */
-static void
-invert_spd3(double *b)
-{
-	double c0 = b[4] * b[8] - b[5] * b[7], c1 = b[5] * b[6] - b[3] * b[8];
-	double c2 = b[3] * b[7] - b[4] * b[6], det = b[0] * c0 + b[1] * c1 + b[2] * c2;
-	double r[9] = { c0, b[2] * b[7] - b[1] * b[8], b[1] * b[5] - b[2] * b[4],
-	    c1, b[0] * b[8] - b[2] * b[6], b[2] * b[3] - b[0] * b[5],
-	    c2, b[1] * b[6] - b[0] * b[7], b[0] * b[4] - b[1] * b[3] };
-	int i;
-
-	for (i = 0; i < 9; i++)
-		b[i] = r[i] / det;
-}
-
 /* z = P r, the filter applied after: a block can turn r off the
  * constraints */
 static void
@@ -208,13 +193,8 @@ precondition(const struct implicit *im, const double *r, double *z)
 {
 	int p, n = im->fo->cl->n;
 
-	for (p = 0; p < n; p++) {
-		const double *b = im->pre + 9 * p, *rp = r + 3 * p;
-
-		z[3 * p] = b[0] * rp[0] + b[1] * rp[1] + b[2] * rp[2];
-		z[3 * p + 1] = b[3] * rp[0] + b[4] * rp[1] + b[5] * rp[2];
-		z[3 * p + 2] = b[6] * rp[0] + b[7] * rp[1] + b[8] * rp[2];
-	}
+	for (p = 0; p < n; p++)
+		block_apply(im->pre + 9 * p, r + 3 * p, z + 3 * p);
 	filter(im, z);
 }
 
@@ -275,7 +255,7 @@ implicit_step(struct implicit *im, double t, double h, const double *y, double *
 		b[0] += md * cl->mass[i];
 		b[4] += md * cl->mass[i];
 		b[8] += md * cl->mass[i];
-		invert_spd3(b);
+		block_invert_spd(b);
 	}
 
 	/* preconditioned CG from dv = 0 */

@@ -692,7 +692,7 @@ assemble_contacts(struct bdf2 *b, const double *x)
 		vec3 t1 = v3_load(c->tan + 3);
 		double d = plane_distance(c, x);
 
-		if (d < clear)
+		if (d <= clear * (1 + 1e-9))	/* stop_at_planes' too */
 			add_diag(b, c->node, n, n, c->k);
 		du = v3_sub(xp, v3_load(b->x0 + 3 * c->node));
 		c->fric = friction_stiffness(c->mu * c->lambda, v3_dot(du, t0), v3_dot(du, t1), eps);
@@ -1005,6 +1005,34 @@ live_pairs(struct bdf2 *b)
 	}
 }
 
+/*
+ * The nodes that a move from x to xt takes past an obstacle contact's
+ * clearance, being clear of it at x, stopped on it: the penalty is not in
+ * the system at x for them, so Newton's step runs them into the obstacle
+ * as if it were not there, and Armijo's rule then cuts the whole cloth's
+ * step to keep those few out. The active set grew a layer an iteration:
+ * the peers' table landing on its cube, 60 to 242 contacts over 29
+ * iterations a step. Stopped on it, the next system has its penalty
+ * (assemble_contacts takes d <= clear): Bertsekas' projected search, the
+ * obstacles' planes taken as bounds. Peers' table at 25^2, first 0.25 s:
+ * 7.6 to 6.0 iterations a step; tablecloth 8.8 to 8.1.
+ */
+static void
+stop_at_planes(const struct bdf2 *b, const double *x, double *xt)
+{
+	double clear = OBSTACLE_CLEARANCE * b->sc->mat.thickness;
+	size_t i;
+
+	for (i = 0; i < b->noc; i++) {
+		const struct bdf2_obstacle_contact *c = &b->oc[i];
+		double d;
+
+		if (plane_distance(c, x) < clear || (d = plane_distance(c, xt)) >= clear)
+			continue;
+		v3_store(xt + 3 * c->node, v3_madd(v3_load(xt + 3 * c->node), v3_load(c->n), clear - d));
+	}
+}
+
 /* A full step taken, Phi fell to phi1 along dx: where the parabola through
  * phi0 (slope g.dx) and phi1 has its least is farther on when the
  * system's stand-in overstates the curvature along dx, as it does where
@@ -1022,6 +1050,7 @@ extrapolate(struct bdf2 *b, double phi0, double slope, double phi1)
 	best = best < EXTRAPOLATE_MOST ? best : EXTRAPOLATE_MOST;
 	for (i = 0; i < n3; i++)
 		b->r[i] = b->x[i] + best * b->dx[i];
+	stop_at_planes(b, b->x, b->r);
 	if ((phi = potential(b, b->r, NULL)) < phi1)
 		memcpy(b->xtry, b->r, n3 * sizeof *b->xtry);
 }
@@ -1046,6 +1075,7 @@ line_search(struct bdf2 *b, double phi0)
 	for (cut = 0; cut < 30; cut++, alpha *= 0.5) {
 		for (i = 0; i < n3; i++)
 			b->xtry[i] = b->x[i] + alpha * b->dx[i];
+		stop_at_planes(b, b->x, b->xtry);
 		phi = potential(b, b->xtry, NULL);
 		if (phi <= phi0 + 1e-4 * alpha * slope) {
 			if (cut == 0)

@@ -370,6 +370,67 @@ solve_shear(struct pbd *pb, double h, double *x)
 	}
 }
 
+/*
+ * The face of a box (grown by the clearance c) through which a node moving
+ * from a to b went in: the slabs' test of a ray against a box, the face
+ * of the last slab entered, if the segment enters the box by it. Into *q
+ * and *n the point of the box's face it goes back out to and the face's
+ * normal; 0 when a was already inside (the nearest face then) or the
+ * segment meets the box nowhere. A node that the substep before left on a
+ * grown face, to its roundings, is outside it: its velocity still points
+ * in. The nearest face is the wrong one for a node that came down on a
+ * box's edge: the tablecloth's row at z = -0.08 m lies on the box's side
+ * plane, and a substep that took it 3 mm below the top put it back beside
+ * the box, 3 mm low, stretching its springs to the row on the top; the
+ * springs then threw the cloth up off the box. Undamped, the tablecloth's
+ * energy rose 56 % above its start (10 % in the step at 0.08 s), the
+ * peers' table's 8.1 %; with the entry face 3.5 % and 0.
+ */
+static int
+box_entry(const struct obstacle *ob, double c, vec3 a, vec3 b, vec3 *q, vec3 *n)
+{
+	double lo[3] = { ob->lo.x - c, ob->lo.y - c, ob->lo.z - c };
+	double hi[3] = { ob->hi.x + c, ob->hi.y + c, ob->hi.z + c };
+	double pa[3] = { a.x, a.y, a.z }, pb[3] = { b.x, b.y, b.z }, slack = 1e-6 * c;
+	double enter = -INFINITY, leave = INFINITY, at[3], out[3] = { 0, 0, 0 };
+	int k, axis = -1;
+
+	for (k = 0; k < 3; k++) {
+		double d = pb[k] - pa[k], t0, t1;
+
+		if (d == 0) {
+			if (pa[k] < lo[k] - slack || pa[k] > hi[k] + slack)
+				return 0;
+			continue;
+		}
+		t0 = (lo[k] - pa[k]) / d;
+		t1 = (hi[k] - pa[k]) / d;
+		if (t0 > t1) {
+			double tt = t0;
+
+			t0 = t1;
+			t1 = tt;
+		}
+		/* entered this slab at t0, a distance |t0 d| along the axis */
+		if (t0 > enter && t0 * fabs(d) > -slack) {
+			enter = t0;
+			axis = k;
+		} else if (t0 * fabs(d) <= -slack && t0 > enter) {
+			enter = t0;
+			axis = -1;	/* within this slab from the start */
+		}
+		leave = fmin(leave, t1);
+	}
+	if (axis < 0 || enter > leave || enter > 1)
+		return 0;
+	for (k = 0; k < 3; k++)		/* where it entered */
+		at[k] = k == axis ? (pb[axis] > pa[axis] ? lo[k] : hi[k]) : pa[k] + enter * (pb[k] - pa[k]);
+	out[axis] = pb[axis] > pa[axis] ? -1 : 1;
+	*n = v3(out[0], out[1], out[2]);
+	*q = v3_madd(v3(at[0], at[1], at[2]), *n, -c);
+	return 1;
+}
+
 /* Nodes inside an analytic obstacle (or nearer than the clearance) back
  * on it, their motion along it held by Coulomb friction: static while the
  * tangential motion of the substep is under mu times the push out, else
@@ -406,6 +467,12 @@ obstacles(struct pbd *pb, double *x)
 			    xp.x > hi.x || xp.y > hi.y || xp.z > hi.z ||
 			    (d = obstacle_distance(ob, xp, &q, &n)) >= clear)
 				continue;
+			if (ob->kind == OBSTACLE_BOX &&
+			    box_entry(ob, clear, v3_load(pb->xprev + 3 * p), xp, &q, &n)) {
+				d = v3_dot(v3_sub(xp, q), n);	/* along the face it came in by */
+				if (d >= clear)
+					continue;
+			}
 			push = clear - d;
 			xp = v3_madd(xp, n, push);
 			dx = v3_sub(xp, v3_load(pb->xprev + 3 * p));

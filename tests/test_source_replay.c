@@ -699,7 +699,7 @@ step_labels_agree(void **state)
 	load_shipped(&sc, SCENE_DIR "tablecloth.scene");
 	st = new_stepper(&sc);
 	source_live(&live, &lv, st);
-	for (k = 1; k <= 37; k++) {
+	for (k = 1; k <= 38; k++) {
 		assert_int_equal(live.step(live.ctx, why, sizeof why), SOURCE_STEPPED);
 		assert_true(src.seek(src.ctx, SOURCE_GOTO, k));
 		live.state(live.ctx, &s);
@@ -711,26 +711,26 @@ step_labels_agree(void **state)
 		for (i = 0; i < n; i++)
 			assert_int_equal(step_shown(ev[i].step), k);
 	}
-	/* node 401: an edge-edge contact (and one with the box) in step 36,
-	 * node-face contacts in 37, three of them listed */
-	assert_true(src.seek(src.ctx, SOURCE_GOTO, 36));
+	/* node 561: an edge-edge contact in step 37, node-face contacts in
+	 * 38, three of them listed */
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 37));
 	src.state(src.ctx, &s);
 	assert_int_equal(evlog_init(&log, s.cl->n), 0);
 	src.history(src.ctx, &log);
 	text_init(&t, 40);
-	screen_node(&t, &s, 401, NULL, &log);
-	for (i = 0; i < (size_t)t.n && strstr(t.line[i], "36 e-e") == NULL; i++)
+	screen_node(&t, &s, 561, NULL, &log);
+	for (i = 0; i < (size_t)t.n && strstr(t.line[i], "37 e-e") == NULL; i++)
 		;
 	if (i == (size_t)t.n)
-		fail_msg("step 36: node 401's edge-edge contact of step 36 is not listed");
-	assert_true(src.seek(src.ctx, SOURCE_GOTO, 37));
+		fail_msg("step 37: node 561's edge-edge contact of step 37 is not listed");
+	assert_true(src.seek(src.ctx, SOURCE_GOTO, 38));
 	src.state(src.ctx, &s);
 	evlog_clear(&log);
 	src.history(src.ctx, &log);
 	text_init(&t, 40);
-	screen_node(&t, &s, 401, NULL, &log);
+	screen_node(&t, &s, 561, NULL, &log);
 	for (i = 0, k = 0; i < (size_t)t.n; i++)
-		k += strstr(t.line[i], "37 n-f") != NULL;
+		k += strstr(t.line[i], "38 n-f") != NULL;
 	assert_int_equal(k, 3);
 	evlog_free(&log);
 	source_live_free(&lv);

@@ -153,6 +153,34 @@ lands_and_rests(void **state)
 	scene_free(&sc);
 }
 
+/* A node pressed into a plane (a load of 0.1 N, 700 times its weight:
+ * it rests within its clearance, held there by its penalty): Newton's
+ * iterations converge every step.
+ * The line search stopped such a node on the plane again and again, its
+ * step into it the same each time, until the iterations' cap
+ * (bdf2.c penalised). */
+static void
+pressed_into_a_plane(void **state)
+{
+	struct scene sc;
+	struct stepper *st;
+	struct stepper_report r;
+
+	(void)state;
+	parse_text(&sc, FLAT("damping = 2 /s\n[plane]\npoint = 0 0 0 m\n"
+	    "[load]\nnodes = 2 2\nforce = 0 -100 0 mN\n"));
+	st = new_stepper(&sc);
+	run_to_end(st);
+	r = report_of(st);
+	print_message("bdf2, a node pressed into a plane: %ld steps, %ld Newton iterations, %ld "
+	    "unconverged, the node at %.3g mm\n", r.step, r.newton, r.unconverged,
+	    stepper_x(st)[3 * 12 + 1] * 1e3);
+	assert_int_equal(r.unconverged, 0);
+	assert_true(stepper_x(st)[3 * 12 + 1] < 0.25 * sc.mat.thickness);	/* pressed in */
+	stepper_free(st);
+	scene_free(&sc);
+}
+
 /* No undamped scene gains energy: the tablecloth's fall onto a box cut
  * to 11 x 11 nodes and the Cusick drape on 15 x 15, with self-contact and
  * no damping, for a second: every step's total energy at most 1 % (of the
@@ -211,6 +239,7 @@ main(void)
 		cmocka_unit_test(free_fall_bdf2),
 		cmocka_unit_test(resume_needs_history),
 		cmocka_unit_test(lands_and_rests),
+		cmocka_unit_test(pressed_into_a_plane),
 		cmocka_unit_test(undamped_never_gains),
 	};
 

@@ -140,6 +140,9 @@ struct bdf2 {
 	 * budget (bdf2_correct_energy) */
 	double e_start, e_solved, e_budget;
 	double last_restored, restored;	/* J: given back, the last step and in all */
+	/* Newton's stop on a small decrease (bdf2.c NEWTON_DECREASE, 0 with
+	 * a scene's tolerance) and Phi where the last line search went */
+	double decrease, phi_taken;
 	/* so far */
 	long steps, newton, cg, unconverged, cuts;
 	int last_newton, last_cg;

@@ -411,13 +411,11 @@ box_entry(const struct obstacle *ob, double c, vec3 a, vec3 b, vec3 *q, vec3 *n)
 			t0 = t1;
 			t1 = tt;
 		}
-		/* entered this slab at t0, a distance |t0 d| along the axis */
-		if (t0 > enter && t0 * fabs(d) > -slack) {
+		/* entered this slab last, at t0: by its face, unless a was
+		 * within it from the start (more than slack inside) */
+		if (t0 > enter) {
 			enter = t0;
-			axis = k;
-		} else if (t0 * fabs(d) <= -slack && t0 > enter) {
-			enter = t0;
-			axis = -1;	/* within this slab from the start */
+			axis = t0 * fabs(d) > -slack ? k : -1;
 		}
 		leave = fmin(leave, t1);
 	}

@@ -330,6 +330,24 @@ write_meta(struct replay_writer *w, const struct replay_meta *m, struct drape_er
 	return write_chunk_now(w, REPLAY_META, 0, 1, p, len, Z_BEST_COMPRESSION, err);
 }
 
+/* Everything the writer holds but its file, freed; the writer zeroed. */
+static void
+writer_release(struct replay_writer *w)
+{
+	free(w->path);
+	free(w->fx);
+	free(w->fq);
+	free(w->fstep);
+	free(w->ft);
+	free(w->steps);
+	free(w->ev);
+	free(w->kstep);
+	free(w->koff);
+	free(w->buf);
+	jobs_free(w->jobs);
+	memset(w, 0, sizeof *w);
+}
+
 int
 replay_writer_open(struct replay_writer *w, const char *path, const struct replay_meta *m,
     struct drape_err *err)
@@ -398,15 +416,7 @@ fail:
 		if (made)
 			remove(path);
 	}
-	free(w->path);
-	free(w->fx);
-	free(w->fq);
-	free(w->fstep);
-	free(w->ft);
-	free(w->steps);
-	free(w->buf);
-	jobs_free(w->jobs);
-	memset(w, 0, sizeof *w);
+	writer_release(w);
 	return -1;
 }
 
@@ -758,18 +768,7 @@ replay_writer_close(struct replay_writer *w, struct drape_err *err)
 			*err = e2;
 		rc = -1;
 	}
-	free(w->path);
-	free(w->fx);
-	free(w->fq);
-	free(w->fstep);
-	free(w->ft);
-	free(w->steps);
-	free(w->ev);
-	free(w->kstep);
-	free(w->koff);
-	free(w->buf);
-	jobs_free(w->jobs);
-	memset(w, 0, sizeof *w);
+	writer_release(w);
 	return rc;
 }
 

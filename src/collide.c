@@ -281,8 +281,18 @@ int
 collide_step(struct collide *c, long step, double dt, const double *y0, double *y1,
     struct drape_err *err)
 {
+	int r;
+
 	collide_begin(c);
-	return collide_check(c, step, dt, y0, y1, err);
+	if ((r = collide_check(c, step, dt, y0, y1, err)) == 0)
+		collide_end(c);
+	return r;
+}
+
+void
+collide_end(struct collide *c)
+{
+	stats_add(&c->total, &c->st);
 }
 
 int
@@ -324,10 +334,11 @@ collide_check(struct collide *c, long step, double dt, const double *y0, double 
 			c->stopped = broad_stopped(c->br);
 			return -1;
 		}
-		c->st.n[STAT_NODE_PAIRS] = bs->node_pairs;
-		c->st.n[STAT_VT_PAIRS] = bs->vt_pairs;
-		c->st.n[STAT_EE_PAIRS] = bs->ee_pairs;
-		c->st.n[STAT_FILLS] = bs->rebuilt;
+		/* summed over a step's checks (the fast path's windows) */
+		c->st.n[STAT_NODE_PAIRS] += bs->node_pairs;
+		c->st.n[STAT_VT_PAIRS] += bs->vt_pairs;
+		c->st.n[STAT_EE_PAIRS] += bs->ee_pairs;
+		c->st.n[STAT_FILLS] += bs->rebuilt;
 		c->st.cell = bs->cell;
 		c->st.hash = bs->hash;
 	}
@@ -340,7 +351,7 @@ collide_check(struct collide *c, long step, double dt, const double *y0, double 
 			if (!c->changed[v] && !c->fixed[v] &&
 			    collide_obstacles_node(c, step, dt, v, false) < 0)
 				goto oom;
-		c->st.n[STAT_PASSES] = 1;
+		c->st.n[STAT_PASSES] = c->st.n[STAT_PASSES] > 1 ? c->st.n[STAT_PASSES] : 1;
 	} else if (collide_ccd_passes(c, step, dt) != 0) {
 		goto oom;
 	}
@@ -350,7 +361,6 @@ collide_check(struct collide *c, long step, double dt, const double *y0, double 
 	}
 	memcpy(y1, c->x1, n3 * sizeof *y1);
 	memcpy(y1 + n3, c->v1, n3 * sizeof *y1);
-	stats_add(&c->total, &c->st);
 	return 0;
 oom:
 	err_set(err, "collisions: out of memory");

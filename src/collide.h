@@ -111,11 +111,15 @@ void collide_set_stop(struct collide *c, const volatile sig_atomic_t *flag);
 int collide_step(struct collide *c, long step, double dt, const double *y0, double *y1,
     struct drape_err *err);
 
-/* collide_step is collide_begin (no events, statistics zero) and then
- * collide_check, so that a step may add events of its own in between. */
+/* collide_step is collide_begin (no events, statistics zero), then
+ * collide_check, then collide_end (the step's statistics into the run's),
+ * so that a step may add events of its own in between, or check more than
+ * once (the fast path's windows): the step's statistics sum its checks'
+ * (their passes: the most). */
 void collide_begin(struct collide *c);
 int collide_check(struct collide *c, long step, double dt, const double *y0, double *y1,
     struct drape_err *err);
+void collide_end(struct collide *c);
 
 /* The broad phase's pairs (in c's broad phase) for the motion the state
  * y0 would make over h at its velocities, each node's box (c->box)

@@ -321,11 +321,12 @@ collide_ccd_passes(struct collide *c, long step, double dt)
 			if (r && pass >= COLLIDE_FAILSAFE_PASS)
 				freeze(c, v);
 		}
-		c->st.n[STAT_PASSES] = pass + 1;
+		if (c->st.n[STAT_PASSES] < pass + 1)	/* a step's most over its checks */
+			c->st.n[STAT_PASSES] = pass + 1;
 		if (c->st.n[STAT_CORRECTIONS] == before)
 			return 0;
 		memcpy(c->changed, c->changed_next, (size_t)c->nv);
 	}
-	c->st.n[STAT_UNRESOLVED]++;
+	c->st.n[STAT_UNRESOLVED] = 1;	/* a step unresolved, in one check or more */
 	return 0;
 }

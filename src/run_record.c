@@ -170,6 +170,7 @@ visit_integrator(struct writer *w, const struct run_record *rec)
 	integer(w, "integrator", "cg_iterations", implicit, r->iters);
 	integer(w, "integrator", "unconverged", implicit, r->unconverged);
 	integer(w, "integrator", "substeps", k == INTEG_FAST, r->substeps);
+	integer(w, "integrator", "windows", k == INTEG_FAST, r->windows);
 	num(w, "time", "simulated", true, r->t);
 	num(w, "time", "end", true, r->t_end);
 	num(w, "time", "wall", true, wall);

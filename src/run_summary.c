@@ -29,8 +29,9 @@ integrator_summary(FILE *f, const struct scene *sc, const struct stepper_report 
 	fprintf(f, "integrator   %s, dt %.4g s (%s; omega <= %.4g rad/s)\n",
 	    integrator_name(sc->integrator), r->dt_set, r->dt_auto ? "auto" : "given", r->omega);
 	if (sc->integrator == INTEG_FAST)
-		fprintf(f, "steps        %ld (%ld substeps of %.3g s at most", r->step, r->substeps,
-		    r->substeps > 0 ? r->t / (double)r->substeps : 0.0);
+		fprintf(f, "steps        %ld (%ld substeps of %.3g s at most, %ld contact windows",
+		    r->step, r->substeps, r->substeps > 0 ? r->t / (double)r->substeps : 0.0,
+		    r->windows);
 	else if (sc->integrator == INTEG_BDF2)
 		fprintf(f, "steps        %ld (%.2f Newton iterations and %.1f CG iterations a step, "
 		    "%ld unconverged", r->step, r->solves > 0 ? (double)r->newton / (double)r->solves : 0.0,

@@ -20,7 +20,7 @@ enum stat_id {
 	STAT_CONTACTS,		/* CONTACT_NTYPES of them, by enum contact_type */
 	STAT_CORRECTIONS = STAT_CONTACTS + CONTACT_NTYPES,	/* node corrections */
 	STAT_PASSES,		/* ccd: detect-and-correct passes (a run: the most) */
-	STAT_FROZEN,		/* ccd: nodes put back to step k as a last resort */
+	STAT_FROZEN,		/* ccd: nodes put back to step k (fast: its window's start) as a last resort */
 	STAT_UNRESOLVED,	/* steps with contacts left at the pass limit */
 	STAT_COUNT
 };

@@ -129,6 +129,7 @@ struct stepper_report {
 	long solves, iters, unconverged;	/* implicit Euler, bdf2: solves, CG iterations */
 	long newton;		/* bdf2: Newton iterations */
 	long substeps;		/* fast: its substeps */
+	long windows;		/* fast: its contact windows (a step or more each) */
 	bool collisions;	/* anything to collide with */
 	bool uses_hash;		/* the broad phase fills a spatial hash */
 	double cell;		/* L_ce */

@@ -183,15 +183,19 @@ rebuild(const struct jval *rec, char *buf, size_t len)
 
 		assert_true(is_null(rec, "integrator.force_evaluations"));
 		assert_true(is_null(rec, "integrator.solves"));
-		line(buf, len, "steps        %ld (%ld substeps of %.3g s at most", steps, sub,
-		    sub > 0 ? num(rec, "time.simulated") / (double)sub : 0.0);
+		line(buf, len, "steps        %ld (%ld substeps of %.3g s at most, %ld contact "
+		    "windows", steps, sub, sub > 0 ? num(rec, "time.simulated") / (double)sub : 0.0,
+		    lnum(rec, "integrator.windows"));
+		assert_true(lnum(rec, "integrator.windows") >= steps);
 	} else {
 		assert_true(is_null(rec, "integrator.solves"));
 		line(buf, len, "steps        %ld (%ld force evaluations", steps,
 		    lnum(rec, "integrator.force_evaluations"));
 	}
-	if (strcmp(integ, "fast") != 0)
+	if (strcmp(integ, "fast") != 0) {
 		assert_true(is_null(rec, "integrator.substeps"));
+		assert_true(is_null(rec, "integrator.windows"));
+	}
 	if (strcmp(integ, "dopri5") == 0)
 		line(buf, len, ", %ld steps rejected", lnum(rec, "integrator.rejected"));
 	else

@@ -627,16 +627,32 @@ signals_within_a_large_step(void **state)
 	size_t i;
 
 	(void)state;
+	/* A signal can still land between two steps, where the run stops
+	 * after the step just done (the commit's bookkeeping over 590,000
+	 * nodes under the sanitizers: a CI run once saw it at step 1): so up
+	 * to three tries a method, each at another time, one of which must
+	 * give up the step under way. */
 	for (i = 0; i < sizeof methods / sizeof methods[0]; i++) {
-		double took;
+		static const double delays[] = { 4, 4.7, 5.3 };
+		int given_up = 0;
+		size_t k;
 
-		snprintf(args, sizeof args, "run --headless --integrator %s '%s'", methods[i], path);
-		took = drape_signalled(&r, args, SIGINT, 4);
-		print_message("%s, 768 x 768: stopped in %.3f s\n", methods[i], took);
-		if (r.status != 130 || strstr(r.err, "interrupted at step ") == NULL ||
-		    strstr(r.err, "; the step under way was given up") == NULL)
-			fail_msg("%s: status %d, stderr '%s'; expected 130 and the step under way "
-			    "given up", methods[i], r.status, r.err);
+		for (k = 0; k < sizeof delays / sizeof delays[0] && !given_up; k++) {
+			double took;
+
+			snprintf(args, sizeof args, "run --headless --integrator %s '%s'", methods[i],
+			    path);
+			took = drape_signalled(&r, args, SIGINT, delays[k]);
+			print_message("%s, 768 x 768, signal after %.1f s: stopped in %.3f s\n",
+			    methods[i], delays[k], took);
+			if (r.status != 130 || strstr(r.err, "interrupted at step ") == NULL)
+				fail_msg("%s: status %d, stderr '%s'; expected 130 and the step",
+				    methods[i], r.status, r.err);
+			given_up = strstr(r.err, "; the step under way was given up") != NULL;
+		}
+		if (!given_up)
+			fail_msg("%s: stderr '%s'; expected the step under way given up",
+			    methods[i], r.err);
 	}
 }
 

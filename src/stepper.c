@@ -25,7 +25,7 @@ struct stepper {
 	struct contacts ct;	/* their contacts inside a step */
 	struct collide col;
 	double *y, *y_next;	/* positions (3n) then velocities (3n) */
-	double *y_window;	/* fast: a window's start state (fast_windows) */
+	double *y_window;	/* fast: a window's start state (fast_step swaps it with y_next) */
 	long windows;		/* fast: the windows its steps took */
 	double t, t_end;
 	double dt;		/* the step to try next */
@@ -500,7 +500,6 @@ static enum step_status
 fast_step(struct stepper *st, double h, const double **from, double *h_last,
     struct step_failure *f)
 {
-	size_t n6 = 6 * (size_t)st->net.cl.n;
 	int nwin = fast_windows(st, h), w, bad;
 	double hw = h / nwin;
 	struct drape_err cerr;
@@ -515,8 +514,11 @@ fast_step(struct stepper *st, double h, const double **from, double *h_last,
 		double hs = w + 1 == nwin ? *h_last : hw;
 		enum step_status s;
 
-		if (w > 0) {
-			memcpy(st->y_window, st->y_next, n6 * sizeof *st->y_window);
+		if (w > 0) {	/* the last window's end becomes this one's start */
+			double *swap = st->y_window;
+
+			st->y_window = st->y_next;
+			st->y_next = swap;
 			y0 = *from = st->y_window;
 		}
 		if ((s = fast_contacts(st, y0, hs, f)) != STEP_OK)

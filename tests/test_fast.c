@@ -214,6 +214,29 @@ soft_fabric_fast(void **state)
 	scene_free(&sc);
 }
 
+/* The peers' table (a 0.24 m cloth of 100 g/m2 over a cube,
+ * ../shared/reference/peers.md, as bench/lib.sh's peers_table makes it)
+ * at n x n nodes into sc: the spacing 0.24 m / (n - 1), the thickness a
+ * quarter of it, E t = 50 N/m, friction 0.1, the grid, the fast path. */
+static void
+peers_table(struct scene *sc, int n)
+{
+	char text[1200];
+	double h = 0.24 / (n - 1), t = 0.25 * h;
+
+	snprintf(text, sizeof text,
+	    "[simulation]\nduration = 2 s\ndt = auto\nintegrator = fast\n"
+	    "[cloth]\nnodes = %d %d\nspacing = %.9g m\norigin = -0.12 0.2 -0.12 m\n"
+	    "orientation = +x +z\nweight = 100 g/m2\nthickness = %.9g m\n"
+	    "modulus_warp = %.9g Pa\nmodulus_weft = %.9g Pa\nshear_modulus = %.9g Pa\n"
+	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n"
+	    "[box]\nmin = 0.02 0 -0.1 m\nmax = 0.12 0.1 0 m\nfriction = 0.1\n"
+	    "[plane]\npoint = 0 0 0 m\nfriction = 0.1\n"
+	    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n"
+	    "friction = 0.1\n", n, n, h, t, 50 / t, 50 / t, 5 / t);
+	parse_text(sc, text);
+}
+
 /* The state after steps of sc with each broad phase, as its hash. */
 static uint64_t
 hash_with(const struct scene *base, enum broad_mode broad, double until)
@@ -251,21 +274,11 @@ hash_with(const struct scene *base, enum broad_mode broad, double until)
 static void
 broad_phases_agree(void **state)
 {
-	static const char table[] =
-	    "[simulation]\nduration = 2 s\ndt = auto\nintegrator = fast\n"
-	    "[cloth]\nnodes = 25 25\nspacing = 10 mm\norigin = -0.12 0.2 -0.12 m\n"
-	    "orientation = +x +z\nweight = 100 g/m2\nthickness = 2.5 mm\n"
-	    "modulus_warp = 20000 Pa\nmodulus_weft = 20000 Pa\nshear_modulus = 2000 Pa\n"
-	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n"
-	    "[box]\nmin = 0.02 0 -0.1 m\nmax = 0.12 0.1 0 m\nfriction = 0.1\n"
-	    "[plane]\npoint = 0 0 0 m\nfriction = 0.1\n"
-	    "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\n"
-	    "friction = 0.1\n";
 	struct scene sc;
 	uint64_t grid, bvh, brute;
 
 	(void)state;
-	parse_text(&sc, table);
+	peers_table(&sc, 25);
 	grid = hash_with(&sc, BROAD_GRID, 0.3);
 	bvh = hash_with(&sc, BROAD_BVH, 0.3);
 	brute = hash_with(&sc, BROAD_BRUTE, 0.3);
@@ -284,7 +297,7 @@ broad_phases_agree(void **state)
 	/* and the check alone, under the other methods, as the cloth meets the
 	 * cube (brute agrees too, but takes a minute under rk4) */
 	for (int m = 0; m < 2; m++) {
-		parse_text(&sc, table);
+		peers_table(&sc, 25);
 		sc.integrator = m == 0 ? INTEG_RK4 : INTEG_IMPLICIT_EULER;
 		grid = hash_with(&sc, BROAD_GRID, 0.25);
 		bvh = hash_with(&sc, BROAD_BVH, 0.25);
@@ -305,24 +318,15 @@ broad_phases_agree(void **state)
 static void
 fine_table_windows(void **state)
 {
-	static const char table[] =
-	    "[simulation]\nduration = 0.22 s\ndt = auto\nintegrator = fast\n"
-	    "[cloth]\nnodes = 100 100\nspacing = 0.00242424242 m\n"
-	    "origin = -0.12 0.2 -0.12 m\norientation = +x +z\nweight = 100 g/m2\n"
-	    "thickness = 0.000606060606 m\nmodulus_warp = 82500 Pa\n"
-	    "modulus_weft = 82500 Pa\nshear_modulus = 8250 Pa\n"
-	    "bending_warp = 1 uN*m\nbending_weft = 1 uN*m\n"
-	    "[box]\nmin = 0.02 0 -0.1 m\nmax = 0.12 0.1 0 m\nfriction = 0.1\n"
-	    "[plane]\npoint = 0 0 0 m\nfriction = 0.1\n"
-	    "[collision]\nself = on\nbroad = bvh\nnarrow = ccd\nposition = slide\n"
-	    "friction = 0.1\n";
 	struct scene sc;
 	struct stepper *st;
 	const struct cloth *cl;
 	long pairs;
 
 	(void)state;
-	parse_text(&sc, table);
+	peers_table(&sc, 100);
+	sc.duration = 0.22;
+	sc.col.broad = BROAD_BVH;
 	st = new_stepper(&sc);
 	run_to_end(st);
 	cl = cloth_of(st);

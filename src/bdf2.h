@@ -106,9 +106,7 @@ struct bdf2 {
 	double tol;		/* converged when every free node's |dPhi/dx|/m <= tol (m/s^2), */
 	double rel;		/* or Newton's step moves no node rel of the step's largest motion */
 	int max_newton, max_cg;
-	double last_step;
-	bool lb_reset, lb_have_prev;
-	double *lb_xprev, *lb_gprev;	/* m: the last Newton step's largest move */
+	double last_step;	/* m: the last Newton step's largest move */
 	/* the state one step back (positions then velocities, 6n), and
 	 * whether there is one */
 	double *hist;

@@ -176,7 +176,8 @@ add_shear(const struct forces *fo, const double *x, double *f)
  * bound as the line folds back on itself. dE/de1 = -k (2 kb x e2 +
  * |kb|^2 e2)/D and dE/de2 = k (2 kb x e1 - |kb|^2 e1)/D. */
 static void
-add_bend(const struct forces *fo, const double *x, double *f, double fold)
+add_bend(const struct forces *fo, const double *x, const double *v, double *f, double fold,
+    double c)
 {
 	const struct cloth *cl = fo->cl;
 	double rest2 = cl->h * cl->h, dmin = fold * rest2;
@@ -187,7 +188,7 @@ add_bend(const struct forces *fo, const double *x, double *f, double fold)
 		vec3 xb = v3_load(x + 3 * hg->b);
 		vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
 		double d = rest2 + v3_dot(e1, e2), kd, kb2;
-		vec3 kb, fa, fc;
+		vec3 kb, ke1, ke2, fa, fc;
 
 		if (forces_poll(fo, s))
 			return;
@@ -198,17 +199,38 @@ add_bend(const struct forces *fo, const double *x, double *f, double fold)
 		kd = hg->k / d;
 		kb = v3_scale(v3_cross(e1, e2), 2 / d);
 		kb2 = v3_dot(kb, kb);
-		fa = v3_scale(v3_madd(v3_scale(v3_cross(kb, e2), 2), e2, kb2), -kd);
-		fc = v3_scale(v3_madd(v3_scale(v3_cross(kb, e1), 2), e1, -kb2), -kd);
+		ke2 = v3_cross(kb, e2);
+		ke1 = v3_cross(kb, e1);
+		fa = v3_scale(v3_madd(v3_scale(ke2, 2), e2, kb2), -kd);
+		fc = v3_scale(v3_madd(v3_scale(ke1, 2), e1, -kb2), -kd);
+		if (c > 0 && kb2 > 0) {
+			/* the dashpot (forces.h). The energy depends on |kb| alone,
+			 * so its force is -k |kb| g, g the gradient of |kb|, and the
+			 * dashpot's -c k g (g.v) is c (d|kb|/dt)/|kb| times it, with
+			 * kb.(d kb/dt) = (2 kb.(d1 x e2 + e1 x d2) - |kb|^2 (d1.e2 +
+			 * e1.d2))/D for e1, e2 moving at d1, d2. Its power, -c k
+			 * (d|kb|/dt)^2, is never positive, and a turn of the whole
+			 * hinge, which changes kb's direction and not its length,
+			 * feels none. */
+			vec3 vb = v3_load(v + 3 * hg->b);
+			vec3 d1 = v3_sub(vb, v3_load(v + 3 * hg->a)), d2 = v3_sub(v3_load(v + 3 * hg->c), vb);
+			double rate = (2 * (v3_dot(d2, ke1) - v3_dot(d1, ke2)) -
+			    kb2 * (v3_dot(d1, e2) + v3_dot(e1, d2))) / d;
+			double scale = 1 + c * rate / kb2;
+
+			fa = v3_scale(fa, scale);
+			fc = v3_scale(fc, scale);
+		}
 		v3_addto(f + 3 * hg->a, fa);
 		v3_addto(f + 3 * hg->c, fc);
 		v3_addto(f + 3 * hg->b, v3_neg(v3_add(fa, fc)));
 	}
 }
 
+
 static void
 accel(const struct forces *fo, double t, const double *x, const double *v, double *a,
-    bool stretch, bool shear, double fold)
+    bool stretch, bool shear, double fold, double bend_damping)
 {
 	const struct cloth *cl = fo->cl;
 	vec3 g = v3_load(fo->g);
@@ -220,7 +242,7 @@ accel(const struct forces *fo, double t, const double *x, const double *v, doubl
 	if (shear && cl->ncorners > 0 && !forces_stopped(fo))
 		add_shear(fo, x, a);
 	if (cl->nhinges > 0 && !forces_stopped(fo))
-		add_bend(fo, x, a, fold);
+		add_bend(fo, x, v, a, fold, bend_damping);
 	for (l = 0; l < fo->nloads; l++)
 		if (load_active(&fo->loads[l], t))
 			for (k = 0; k < fo->loads[l].n; k++)
@@ -238,14 +260,14 @@ accel(const struct forces *fo, double t, const double *x, const double *v, doubl
 void
 forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a)
 {
-	accel(fo, t, x, v, a, true, true, 0);
+	accel(fo, t, x, v, a, true, true, 0, 0);
 }
 
 void
 forces_accel_bending(const struct forces *fo, double t, const double *x, const double *v,
-    double *a, double fold)
+    double *a, double fold, double c)
 {
-	accel(fo, t, x, v, a, false, false, fold);
+	accel(fo, t, x, v, a, false, false, fold, c);
 }
 
 double

@@ -60,9 +60,13 @@ void forces_accel(const struct forces *fo, double t, const double *x, const doub
  * for a turning angle theta) is taken as at least fold * rest^2, so that
  * its stiffness, k at rest and growing as sec^4(theta/2) towards a fold
  * right back, stays within what an explicit substep integrates (0: none;
- * forces_fold_limit gives it). */
+ * forces_fold_limit gives it); and with a dashpot on each hinge's rate
+ * of bending, force -c k g (g.v) for its stiffness k and g the gradient
+ * of |kb| (c in seconds, 0 for none): stiffness-proportional damping of
+ * the bending alone, which a turn of the whole hinge does not feel
+ * (pbd.c BEND_DAMPING says why). */
 void forces_accel_bending(const struct forces *fo, double t, const double *x, const double *v,
-    double *a, double fold);
+    double *a, double fold, double c);
 /* The fold at which a hinge is s times as stiff as at rest (s >= 1). */
 double forces_fold_limit(double s);
 

@@ -9,7 +9,9 @@
  * the stiff springs couple the whole network, the soft forces do not.
  * So the two are split, after Macklin et al. 2019 ("small steps"):
  *   - the step is cut into substeps short enough for bending, the one
- *     stiffness taken explicitly, with gravity, loads and damping,
+ *     stiffness taken explicitly (with a dashpot on each hinge's
+ *     curvature rate that damps its modes near the substep's scale,
+ *     pbd.c BEND_DAMPING), with gravity, loads and damping,
  *     v += h_s F/m, x* = x + h_s v, and for the sideways swing of taut
  *     yarns (their tension's geometric stiffness, which the line solves
  *     below follow only from substep to substep): pbd.c tension_omega2;

@@ -327,6 +327,97 @@ rigid_motion_is_free(void **state)
 	scene_free(&sc);
 }
 
+
+/* |kb| of hinge s at x (forces.c add_bend's, D unclamped). */
+static double
+hinge_kb(const struct cloth *cl, const struct hinge *hg, const double *x)
+{
+	vec3 xb = v3_load(x + 3 * hg->b);
+	vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
+
+	return v3_len(v3_scale(v3_cross(e1, e2), 2 / (cl->h * cl->h + v3_dot(e1, e2))));
+}
+
+/* The fast path's hinge dashpots (forces_accel_bending's c): their power
+ * is -c k (d|kb|/dt)^2 summed over the hinges, with the rate taken by
+ * central differences; a rigid motion of the bent cloth, and rest, get
+ * no force from them. */
+static void
+hinge_dashpots_damp_bending_alone(void **state)
+{
+	struct scene sc;
+	struct cloth cl;
+	struct forces fo;
+	struct drape_err err;
+	double *x, *v, *a0, *a1, *xp, *xm, c = 2e-4, power = 0, want = 0, big = 0, worst = 0;
+	uint64_t rng = 777;
+	size_t s;
+	int p, k, round;
+
+	(void)state;
+	build(&cl, &sc, "[simulation]\nduration = 1 s\ngravity = 0\n[cloth]\nnodes = 5 4\n"
+	    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\n"
+	    "modulus_weft = 10 MPa\n" FULL);
+	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);
+	x = malloc(3 * (size_t)cl.n * sizeof *x);
+	v = malloc(3 * (size_t)cl.n * sizeof *v);
+	a0 = malloc(3 * (size_t)cl.n * sizeof *a0);
+	a1 = malloc(3 * (size_t)cl.n * sizeof *a1);
+	xp = malloc(3 * (size_t)cl.n * sizeof *xp);
+	xm = malloc(3 * (size_t)cl.n * sizeof *xm);
+	assert_true(x && v && a0 && a1 && xp && xm);
+	for (k = 0; k < 3 * cl.n; k++) {	/* crumpled, moving at random */
+		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+		x[k] = cl.x0[k] + 0.008 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5);
+		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+		v[k] = 0.2 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5);
+	}
+	forces_accel_bending(&fo, 0, x, v, a0, 0, 0);
+	forces_accel_bending(&fo, 0, x, v, a1, 0, c);
+	for (p = 0; p < cl.n; p++)
+		for (k = 0; k < 3; k++)
+			power += cl.mass[p] * (a1[3 * p + k] - a0[3 * p + k]) * v[3 * p + k];
+	for (k = 0; k < 3 * cl.n; k++) {
+		xp[k] = x[k] + 1e-7 * v[k];
+		xm[k] = x[k] - 1e-7 * v[k];
+	}
+	for (s = 0; s < cl.nhinges; s++) {
+		double rate = (hinge_kb(&cl, &cl.hinges[s], xp) - hinge_kb(&cl, &cl.hinges[s], xm)) / 2e-7;
+
+		want -= c * cl.hinges[s].k * rate * rate;
+	}
+	print_message("dashpots' power %.6e W, -c sum k (d|kb|/dt)^2 %.6e W\n", power, want);
+	assert_true(want < 0);
+	assert_true(fabs(power - want) < 1e-5 * fabs(want));
+	/* rigid: turning about (1, 2, 3) at 3 rad/s and moving; then at rest */
+	for (round = 0; round < 2; round++) {
+		vec3 w = v3(3 / sqrt(14.0), 6 / sqrt(14.0), 9 / sqrt(14.0));
+
+		for (p = 0; p < cl.n; p++) {
+			big = fmax(big, v3_len(v3_sub(v3_load(a1 + 3 * p), v3_load(a0 + 3 * p))));
+			v3_store(v + 3 * p, round == 0 ? v3_add(v3_cross(w, v3_load(x + 3 * p)),
+			    v3(0.1, -0.2, 0.05)) : v3(0, 0, 0));
+		}
+		forces_accel_bending(&fo, 0, x, v, a0, 0, 0);
+		forces_accel_bending(&fo, 0, x, v, a1, 0, c);
+		for (p = 0; p < cl.n; p++)
+			worst = fmax(worst, v3_len(v3_sub(v3_load(a1 + 3 * p), v3_load(a0 + 3 * p))));
+	}
+	print_message("dashpots' largest acceleration: %.3e m/s^2 moving, %.3e rigid or at rest\n",
+	    big, worst);
+	assert_true(big > 0);
+	assert_true(worst < 1e-9 * big);
+	free(x);
+	free(v);
+	free(a0);
+	free(a1);
+	free(xp);
+	free(xm);
+	forces_free(&fo);
+	cloth_free(&cl);
+	scene_free(&sc);
+}
+
 int
 main(void)
 {
@@ -337,6 +428,7 @@ main(void)
 		cmocka_unit_test(disc_counts_and_masses),
 		cmocka_unit_test(forces_are_energy_gradient),
 		cmocka_unit_test(rigid_motion_is_free),
+		cmocka_unit_test(hinge_dashpots_damp_bending_alone),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

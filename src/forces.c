@@ -227,7 +227,6 @@ add_bend(const struct forces *fo, const double *x, const double *v, double *f, d
 	}
 }
 
-
 static void
 accel(const struct forces *fo, double t, const double *x, const double *v, double *a,
     bool stretch, bool shear, double fold, double bend_damping)

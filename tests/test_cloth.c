@@ -7,10 +7,11 @@
 #include "forces.h"
 #include "vec3.h"
 
-#define CLOTH(nu, nv, extra) \
-	"[simulation]\nduration = 1 s\n[cloth]\nnodes = " #nu " " #nv "\nspacing = 10 mm\n" \
+#define CLOTH_WITH(sim, nu, nv, extra) \
+	"[simulation]\nduration = 1 s\n" sim "[cloth]\nnodes = " #nu " " #nv "\nspacing = 10 mm\n" \
 	"weight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\nmodulus_weft = 10 MPa\n" \
 	extra
+#define CLOTH(nu, nv, extra) CLOTH_WITH("", nu, nv, extra)
 
 #define FULL "shear_modulus = 0.2 MPa\nbending_warp = 10 uN*m\nbending_weft = 5 uN*m\n"
 
@@ -222,6 +223,14 @@ total_elastic(const struct forces *fo, const double *x, const double *v)
 	return e.stretch + e.shear + e.bend + e.gravity + e.load;
 }
 
+/* A uniform number in [-0.5, 0.5) from a 64-bit LCG's state, stepped. */
+static double
+uniform(uint64_t *rng)
+{
+	*rng = *rng * 6364136223846793005ULL + 1442695040888963407ULL;
+	return (double)(*rng >> 11) / 9007199254740992.0 - 0.5;
+}
+
 /* Forces must be minus the gradient of the energy: central differences on
  * a crumpled configuration, every coordinate of every node. */
 static void
@@ -241,8 +250,7 @@ gradient_check(const struct scene *sc, const struct cloth *cl)
 	assert_non_null(v);
 	assert_non_null(a);
 	for (k = 0; k < 3 * cl->n; k++) {	/* up to 40 % of h off the grid */
-		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-		x[k] = cl->x0[k] + 0.004 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5) * 2;
+		x[k] = cl->x0[k] + 0.008 * uniform(&rng);
 	}
 	forces_accel(&fo, 0, x, v, a);
 	for (p = 0; p < cl->n; p++)
@@ -299,9 +307,7 @@ rigid_motion_is_free(void **state)
 	int p;
 
 	(void)state;
-	build(&cl, &sc, "[simulation]\nduration = 1 s\ngravity = 0\n[cloth]\nnodes = 5 5\n"
-	    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\n"
-	    "modulus_weft = 10 MPa\n" FULL);
+	build(&cl, &sc, CLOTH_WITH("gravity = 0\n", 5, 5, FULL));
 	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);
 	x = malloc(3 * (size_t)cl.n * sizeof *x);
 	v = calloc(3 * (size_t)cl.n, sizeof *v);
@@ -355,9 +361,7 @@ hinge_dashpots_damp_bending_alone(void **state)
 	int p, k, round;
 
 	(void)state;
-	build(&cl, &sc, "[simulation]\nduration = 1 s\ngravity = 0\n[cloth]\nnodes = 5 4\n"
-	    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 20 MPa\n"
-	    "modulus_weft = 10 MPa\n" FULL);
+	build(&cl, &sc, CLOTH_WITH("gravity = 0\n", 5, 4, FULL));
 	assert_int_equal(forces_init(&fo, &sc, &cl, &err), 0);
 	x = malloc(3 * (size_t)cl.n * sizeof *x);
 	v = malloc(3 * (size_t)cl.n * sizeof *v);
@@ -367,10 +371,8 @@ hinge_dashpots_damp_bending_alone(void **state)
 	xm = malloc(3 * (size_t)cl.n * sizeof *xm);
 	assert_true(x && v && a0 && a1 && xp && xm);
 	for (k = 0; k < 3 * cl.n; k++) {	/* crumpled, moving at random */
-		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-		x[k] = cl.x0[k] + 0.008 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5);
-		rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-		v[k] = 0.2 * ((double)(rng >> 11) / 9007199254740992.0 - 0.5);
+		x[k] = cl.x0[k] + 0.008 * uniform(&rng);
+		v[k] = 0.2 * uniform(&rng);
 	}
 	forces_accel_bending(&fo, 0, x, v, a0, 0, 0);
 	forces_accel_bending(&fo, 0, x, v, a1, 0, c);

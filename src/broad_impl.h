@@ -73,6 +73,10 @@ struct broad_bvh {
 	 * per edge and per triangle the boxes of those (6 each) */
 	double *vnear, *enear, *tnear;
 	size_t vnearcap, enearcap, tnearcap;
+	/* per tree node the same two boxes over the triangles under it, for
+	 * the near test of a pair of subtrees (bvh_traverse) */
+	double *nnear;
+	size_t nnearcap;
 	int bvh_nv;		/* the geometry the tree was built for */
 	size_t bvh_ntri;
 	/* the pairs of the last search with a near test (a step's
@@ -94,6 +98,7 @@ struct broad_bvh {
 	double *tbox;		/* per triangle: its box, for the held pairs */
 	size_t tboxcap;
 	bool held_valid;
+	bool near_tested;	/* the last search's pairs passed its near test */
 	struct broad_want held_want;
 	int held_nv;
 	double held_skin;	/* the held boxes' widening */

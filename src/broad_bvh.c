@@ -26,15 +26,21 @@ near_overlap(const double *pa, const double *ma, const double *pb, const double 
 
 	for (k = 0; k < 3; k++) {
 		double g1 = pb[k] - pa[3 + k], g2 = pa[k] - pb[3 + k];
-		double lo = ma[k] - mb[3 + k], hi = ma[3 + k] - mb[k];
-		double m = -lo > hi ? -lo : hi;
 
 		gap = g1 > gap ? g1 : gap;
 		gap = g2 > gap ? g2 : gap;
+	}
+	/* boxes within reach at the start, as neighbours in a cloth are at
+	 * every level of the trees: no need of the motion */
+	if ((r = gap - near) <= 0)
+		return 1;
+	for (k = 0; k < 3; k++) {
+		double lo = ma[k] - mb[3 + k], hi = ma[3 + k] - mb[k];
+		double m = -lo > hi ? -lo : hi;
+
 		m2 += m * m;
 	}
-	r = gap - near;
-	return r <= 0 || r * r <= share * share * m2;
+	return r * r <= share * share * m2;
 }
 
 /* The boxes (6 doubles each) of the positions and of the motions of the

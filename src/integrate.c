@@ -30,6 +30,12 @@ integrator_is_implicit(enum integrator_kind kind)
 	return kind == INTEG_IMPLICIT_EULER || kind == INTEG_FAST || kind == INTEG_BDF2;
 }
 
+bool
+integrator_finds_contacts(enum integrator_kind kind)
+{
+	return kind == INTEG_FAST || kind == INTEG_BDF2;
+}
+
 const char *
 integrator_name(enum integrator_kind kind)
 {

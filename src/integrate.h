@@ -42,6 +42,9 @@ struct integrator {
 const char *integrator_name(enum integrator_kind kind);
 /* implicit-euler, fast and bdf2: stepped by implicit.c, pbd.c, bdf2.c. */
 bool integrator_is_implicit(enum integrator_kind kind);
+/* fast and bdf2: they find their contacts inside the step, before the
+ * collision stages. */
+bool integrator_finds_contacts(enum integrator_kind kind);
 int integrator_from_name(const char *name, enum integrator_kind *kind);
 /* "rk4, euler, ... or fast" into buf (cut to len): every name, from the
  * table, for the messages that say what was expected, so that none of

@@ -178,6 +178,7 @@ visit_integrator(struct writer *w, const struct run_record *rec)
 	num(w, "time", "steps_per_s", true, wall > 0 ? (double)r->step / wall : 0);
 	num(w, "time", "stepping", true, r->step_wall);
 	num(w, "time", "collisions", r->collisions, r->collide_wall);
+	num(w, "time", "contacts", r->collisions && integrator_finds_contacts(k), r->contacts_wall);
 }
 
 static void

@@ -47,9 +47,14 @@ integrator_summary(FILE *f, const struct scene *sc, const struct stepper_report 
 	fprintf(f, ")\n");
 	fprintf(f, "simulated    %.6g s\n", r->t);
 	fprintf(f, "wall time    %.3f s", wall);
-	if (r->collisions && r->step_wall > 0)
-		fprintf(f, " (collision stages %.3f s, %.1f %% of the steps' %.3f s)",
+	if (r->collisions && r->step_wall > 0) {
+		fprintf(f, " (collision stages %.3f s, %.1f %% of the steps' %.3f s",
 		    r->collide_wall, 100 * r->collide_wall / r->step_wall, r->step_wall);
+		if (integrator_finds_contacts(sc->integrator))
+			fprintf(f, "; contacts found in the steps %.3f s, %.1f %%", r->contacts_wall,
+			    100 * r->contacts_wall / r->step_wall);
+		fprintf(f, ")");
+	}
 	fprintf(f, "\n");
 	fprintf(f, "speed        %.4g x real time, %.0f steps/s\n", wall > 0 ? r->t / wall : 0,
 	    wall > 0 ? (double)r->step / wall : 0);

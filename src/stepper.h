@@ -137,9 +137,10 @@ struct stepper_report {
 	const struct contact_event *ev;	/* the last step's events */
 	size_t nev;
 	const struct lock_stats *locks;
-	/* s of wall time over the committed steps: all of each step, and its
-	 * collision stages (broad and narrow phases and response) */
-	double step_wall, collide_wall;
+	/* s of wall time over the committed steps: all of each step, its
+	 * collision stages (broad and narrow phases and response), and the
+	 * search for its contacts inside the integration (fast, bdf2) */
+	double step_wall, collide_wall, contacts_wall;
 };
 void stepper_report(const struct stepper *st, struct stepper_report *r);
 

@@ -196,6 +196,13 @@ rebuild(const struct jval *rec, char *buf, size_t len)
 		assert_true(is_null(rec, "integrator.substeps"));
 		assert_true(is_null(rec, "integrator.windows"));
 	}
+	/* the search for contacts inside the step: fast's and bdf2's alone */
+	if (truth(rec, "collisions.enabled") &&
+	    (strcmp(integ, "fast") == 0 || strcmp(integ, "bdf2") == 0))
+		assert_true(num(rec, "time.contacts") > 0 &&
+		    num(rec, "time.contacts") < num(rec, "time.stepping"));
+	else
+		assert_true(is_null(rec, "time.contacts"));
 	if (strcmp(integ, "dopri5") == 0)
 		line(buf, len, ", %ld steps rejected", lnum(rec, "integrator.rejected"));
 	else
@@ -334,6 +341,35 @@ json_equals_text(void **state)
 	    "--set collision.position=keep " TOP_SRCDIR "/scenes/tablecloth.scene");
 	same_as_text("cantilever, dopri5, no collisions",
 	    "--until 2ms --integrator dopri5 " TOP_SRCDIR "/scenes/cantilever.scene");
+}
+
+/* The wall time line of a method that finds its contacts inside the step
+ * gives that search's share beside the collision stages'; others' not. */
+static void
+wall_time_shows_the_contacts(void **state)
+{
+	struct result r;
+	struct jval rec;
+	const char *w;
+
+	(void)state;
+	drape(&r, "run --headless --until 15ms " TOP_SRCDIR "/scenes/tablecloth.scene");
+	assert_int_equal(r.status, 0);
+	w = strstr(r.out, "\nwall time ");
+	assert_non_null(w);
+	assert_non_null(strstr(w, " s; contacts found in the steps "));
+	drape(&r, "run --headless --until 2ms --integrator rk4 " TOP_SRCDIR "/scenes/tablecloth.scene");
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "\nwall time "));
+	assert_null(strstr(r.out, "contacts found in the steps"));
+	/* bdf2 finds them once a step: its record has the time too */
+	drape(&r, "run --summary json --until 20ms --integrator bdf2 " TOP_SRCDIR
+	    "/scenes/tablecloth.scene");
+	assert_int_equal(r.status, 0);
+	parse_or_fail(r.out, &rec);
+	assert_true(num(&rec, "time.contacts") > 0 &&
+	    num(&rec, "time.contacts") < num(&rec, "time.stepping"));
+	json_free(&rec);
 }
 
 /* Splits a CSV line into fields (quotes, doubled quotes; no line breaks). */
@@ -538,6 +574,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(strict_reader),
 		cmocka_unit_test(json_equals_text),
+		cmocka_unit_test(wall_time_shows_the_contacts),
 		cmocka_unit_test(csv_equals_json),
 		cmocka_unit_test(blowup_still_prints_its_record),
 		cmocka_unit_test(resume_keeps_stdout_for_the_record),

@@ -743,7 +743,7 @@ broad_find_bvh(struct broad *b, const struct geom *g, double cell, const struct 
 		return -1;
 	if (bvh_held_find(b, g, want, cell) != 0)
 		return -1;
-	if (want->near > 0 && !b->bvh.near_tested)
+	if (want->near > 0)
 		near_filter(b, want);
 	return 0;
 }

@@ -11,11 +11,10 @@
  * A traversal of a cloth against itself costs the same whatever the
  * motion: its neighbours in the plane overlap at every level of the tree
  * (some 40,000 node pairs a traversal on the tablecloth). Yet from one
- * search to the next most vertices' boxes barely move: the fast path
- * searches twice a step, at its start for the pairs its predicted motion
- * may bring within reach, and at its end for the check over the motion it
- * made, and the slow integrators' steps are short. So a traversal is made
- * with every vertex's box widened by a skin, and its pairs are held with
+ * search to the next most vertices' boxes barely move: the slow
+ * integrators' steps are short (the search for a step's contacts, with a
+ * near test, traverses on its own: near_traversal). So a traversal is
+ * made with every vertex's box widened by a skin, and its pairs held with
  * those boxes (a Verlet list); a later search takes from them the pairs of
  * vertices whose boxes still lie inside their held ones ("clean"), by its
  * own box test, and looks up only what touches the others ("dirty"): one
@@ -459,14 +458,29 @@ bvh_fill_query_boxes(struct broad *b, const struct geom *g, const struct broad_w
  * whose pairs (sorted) and boxes become the held ones, and the search's
  * pairs: 0, or -1 out of memory or stopped. The tree keeps these boxes
  * until the next traversal: the held pairs' queries rely on it. */
+/* Both trees against the cloth's for want, refitted to its boxes (qbox,
+ * ebox), the pairs sorted: 0, or -1 out of memory or stopped. */
+static int
+traverse_trees(struct broad *b, const struct geom *g, const struct broad_want *want)
+{
+	bvh_refit(b, g);
+	b->nvt = b->nee = 0;
+	if (b->bvh.cloth_root >= 0 && want->self &&
+	    bvh_traverse(b, g, want, b->bvh.cloth_root, b->bvh.cloth_root) != 0)
+		return -1;
+	if (b->bvh.cloth_root >= 0 && b->bvh.mesh_root >= 0 &&
+	    bvh_traverse(b, g, want, b->bvh.cloth_root, b->bvh.mesh_root) != 0)
+		return -1;
+	return bvh_sort(b, g);
+}
+
+/* for a search with no near test (near_traversal has those) */
 static int
 hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *want,
     double skin)
 {
-	struct broad_want all = *want;
 	size_t e;
 
-	all.near = 0;
 	if (!b->bvh.held_valid)
 		skin = 0;
 	else if (b->bvh.held_skin > 0 ? b->bvh.held_uses < HELD_SKIN_USES : b->bvh.held_uses > 0)
@@ -475,15 +489,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 	b->bvh.held_skin = skin;
 	b->bvh.held_uses = 0;
 	bvh_fill_query_boxes(b, g, want, skin);
-	bvh_refit(b, g);
-	b->nvt = b->nee = 0;
-	if (b->bvh.cloth_root >= 0 && want->self &&
-	    bvh_traverse(b, g, &all, b->bvh.cloth_root, b->bvh.cloth_root) != 0)
-		return -1;
-	if (b->bvh.cloth_root >= 0 && b->bvh.mesh_root >= 0 &&
-	    bvh_traverse(b, g, &all, b->bvh.cloth_root, b->bvh.mesh_root) != 0)
-		return -1;
-	if (bvh_sort(b, g) != 0 ||
+	if (traverse_trees(b, g, want) != 0 ||
 	    grow_pairs(b, (void **)&b->bvh.held_vt, &b->bvh.held_vtcap, b->nvt + 1, sizeof *b->vt) != 0 ||
 	    grow_pairs(b, (void **)&b->bvh.held_ee, &b->bvh.held_eecap, b->nee + 1, sizeof *b->ee) != 0 ||
 	    grow_array((void **)&b->bvh.held_box, &b->bvh.held_boxcap, 6 * (size_t)g->nv,
@@ -508,7 +514,7 @@ hold_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 		for (e = 0; e < b->bvh.ncull; e++)
 			b->bvh.held_mark[b->bvh.cull[e]] = 1;
 	}
-	b->bvh.held_want = all;
+	b->bvh.held_want = *want;
 	b->bvh.held_nv = g->nv;
 	b->bvh.held_valid = true;
 	if (skin == 0)
@@ -538,16 +544,7 @@ near_traversal(struct broad *b, const struct geom *g, const struct broad_want *w
 {
 	b->bvh.held_valid = false;	/* the tree takes this search's boxes */
 	bvh_fill_query_boxes(b, g, want, 0);
-	bvh_refit(b, g);
-	b->nvt = b->nee = 0;
-	if (b->bvh.cloth_root >= 0 && want->self &&
-	    bvh_traverse(b, g, want, b->bvh.cloth_root, b->bvh.cloth_root) != 0)
-		return -1;
-	if (b->bvh.cloth_root >= 0 && b->bvh.mesh_root >= 0 &&
-	    bvh_traverse(b, g, want, b->bvh.cloth_root, b->bvh.mesh_root) != 0)
-		return -1;
-	b->bvh.near_tested = true;
-	return bvh_sort(b, g);
+	return traverse_trees(b, g, want);
 }
 
 int
@@ -555,7 +552,6 @@ bvh_held_find(struct broad *b, const struct geom *g, const struct broad_want *wa
 {
 	int rc = 1;
 
-	b->bvh.near_tested = false;
 	if (held_serves(b, g, want))
 		rc = find_held(b, g, want);
 	b->bvh.tree_covers = rc == 1;	/* a traversal refits the tree */

@@ -79,10 +79,11 @@ struct broad_bvh {
 	size_t nnearcap;
 	int bvh_nv;		/* the geometry the tree was built for */
 	size_t bvh_ntri;
-	/* the pairs of the last search with a near test (a step's
-	 * contacts), before that test, and each vertex's box they were found
-	 * for; a later search whose vertices' boxes lie inside takes its pairs
-	 * from them (find_held). held_valid: there are such pairs. */
+	/* the pairs of the last traversal without a near test (a step's
+	 * check; broad_held.c near_traversal holds none), and each vertex's
+	 * box they were found for; a later search whose vertices' boxes lie
+	 * inside takes its pairs from them (find_held). held_valid: there
+	 * are such pairs. */
 	struct vt_pair *held_vt;
 	size_t held_nvt, held_vtcap;
 	struct ee_pair *held_ee;
@@ -98,7 +99,6 @@ struct broad_bvh {
 	double *tbox;		/* per triangle: its box, for the held pairs */
 	size_t tboxcap;
 	bool held_valid;
-	bool near_tested;	/* the last search's pairs passed its near test */
 	struct broad_want held_want;
 	int held_nv;
 	double held_skin;	/* the held boxes' widening */

@@ -268,17 +268,18 @@ fi
 dcsv=$results/bdf2-drape.csv
 if want 5; then
 	coef_of() { awk '/^drape coefficient / { print $3 }'; }
+	nodes_of() { awk '/^network / { for (i = 1; i <= NF; i++) if ($i == "of") { print $(i + 1); exit } }'; }
 	echo "method,spacing_mm,nodes,drape_coefficient,wall_s" >"$dcsv"
 	"$drape" run --headless --integrator rk4 "$srcdir/scenes/drape.scene" >"$tmp/out" 2>"$tmp/err" ||
 		{ echo "$prog: drape rk4:"; head -n 3 "$tmp/err"; } >&2
-	echo "rk4,10,705,$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out")" >>"$dcsv"
+	echo "rk4,10,$(nodes_of <"$tmp/out"),$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out")" >>"$dcsv"
 	# The coefficient at 10 mm depends on which folds the falling skirt
 	# picks, and that on the path: RK4's own moves with its step.
 	[ -t 2 ] && printf '\r  the drape, RK4 at dt %s s          ' "$rk4_fine_dt" >&2
 	"$drape" run --headless --integrator rk4 --set "simulation.dt=$rk4_fine_dt s" \
 	    "$srcdir/scenes/drape.scene" >"$tmp/out" 2>"$tmp/err" ||
 		{ echo "$prog: drape rk4 at $rk4_fine_dt s:"; head -n 3 "$tmp/err"; } >&2
-	echo "rk4-fine,10,705,$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out")" >>"$dcsv"
+	echo "rk4-fine,10,$(nodes_of <"$tmp/out"),$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out")" >>"$dcsv"
 	for s in $spacings; do
 		# the same 30 cm specimen on squares of s mm: 300/s + 1 nodes a side
 		n=$(awk -v s="$s" 'BEGIN { printf "%d", 300 / s + 1.5 }')
@@ -286,7 +287,7 @@ if want 5; then
 		[ -t 2 ] && printf '\r  the drape at %s mm          ' "$s" >&2
 		"$drape" run --headless --integrator bdf2 "$tmp/d$s.scene" >"$tmp/out" 2>"$tmp/err" ||
 			{ echo "$prog: drape bdf2 $s mm:"; head -n 3 "$tmp/err"; } >&2
-		nodes=$(awk '/^network / { for (i = 1; i <= NF; i++) if ($i == "of") { print $(i + 1); exit } }' "$tmp/out")
+		nodes=$(nodes_of <"$tmp/out")
 		echo "bdf2,$s,${nodes:--},$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out")" >>"$dcsv"
 	done
 	[ -t 2 ] && printf '\r%60s\r' '' >&2

@@ -21,12 +21,16 @@ tributary(int k, int n, double h)
 }
 
 /*
- * The shape is a set of whole squares: a disc keeps the squares whose four
- * corners lie in the circle inscribed in the grid, and its nodes are the
+ * The shape is a set of whole squares: a disc keeps the squares whose
+ * centres lie in the circle inscribed in the grid, and its nodes are the
  * corners of those squares. Keeping squares rather than nodes gives every
  * node a mass (the squares around it) and every node a triangle (what
- * collisions need); a node inside the circle whose squares all poke out
- * would have neither. The widths and areas below then come from the squares
+ * collisions need). Taking a square by its centre puts the staircase
+ * outline as much outside the circle as inside, so the cloth's area is the
+ * circle's to a few squares (716 of 707 on a 30 cm disc of 10 mm squares,
+ * 2828 of 2827 on 5 mm); the squares wholly inside would leave a rim two
+ * thirds of a square short all round (648 and 2700), a shorter overhang
+ * that drapes less. The widths and areas below come from the squares
  * present, so a spring, hinge or node of the disc's rim stands for the
  * cloth on its inner side only, as one of a square cloth's border does.
  */
@@ -67,30 +71,13 @@ node_mass(const struct cloth *cl, const unsigned char *sq, double weight, int i,
 	    square_at(cl, sq, i, j - 1) + square_at(cl, sq, i - 1, j) + square_at(cl, sq, i, j));
 }
 
-/* Grid position (i, j) lies in the circle inscribed in an nu x nv grid. In
- * half spacings from the centre, so that the test is exact integer
- * arithmetic. */
-static int
-in_circle(int nu, int nv, int i, int j)
-{
-	long di = 2L * i - (nu - 1), dj = 2L * j - (nv - 1), r = nu - 1;
-
-	return di * di + dj * dj <= r * r;
-}
-
-static int
-in_disc(const struct cloth *cl, int i, int j)
-{
-	return in_circle(cl->nu, cl->nv, i, j);
-}
-
-/* The square (i, j)..(i + 1, j + 1) of a disc: its four corners in it. */
+/* The square (i, j)..(i + 1, j + 1) of a disc: its centre in the circle. */
 static bool
 disc_square(int nu, int nv, int i, int j)
 {
-	return i >= 0 && j >= 0 && i + 1 < nu && j + 1 < nv && in_circle(nu, nv, i, j) &&
-	    in_circle(nu, nv, i + 1, j) && in_circle(nu, nv, i, j + 1) &&
-	    in_circle(nu, nv, i + 1, j + 1);
+	long di = 2L * i + 1 - (nu - 1), dj = 2L * j + 1 - (nv - 1), r = nu - 1;
+
+	return i >= 0 && j >= 0 && i + 1 < nu && j + 1 < nv && di * di + dj * dj <= r * r;
 }
 
 bool
@@ -119,9 +106,7 @@ build_shape(struct cloth *cl, unsigned char **sqp)
 		for (i = 0; i + 1 < nu; i++) {
 			int k = j * (nu - 1) + i;
 
-			sq[k] = cl->shape == SHAPE_SQUARE || (in_disc(cl, i, j) &&
-			    in_disc(cl, i + 1, j) && in_disc(cl, i, j + 1) &&
-			    in_disc(cl, i + 1, j + 1));
+			sq[k] = cl->shape == SHAPE_SQUARE || disc_square(nu, nv, i, j);
 			cl->nsquares += sq[k];
 		}
 	for (j = 0, p = 0; j < nv; j++)

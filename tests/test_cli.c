@@ -185,7 +185,7 @@ drape_coefficient_and_hash(void **state)
 	(void)state;
 	run_text(&r, "cusick.scene", CUSICK("grid"));
 	assert_int_equal(r.status, 0);
-	assert_non_null(strstr(r.out, "network      disc of 77 nodes in a 11 x 11 grid"));
+	assert_non_null(strstr(r.out, "network      disc of 101 nodes in a 11 x 11 grid"));
 	at = strstr(r.out, "drape coefficient ");
 	assert_non_null(at);
 	assert_int_equal(sscanf(at, "drape coefficient %lf", &dc), 1);

@@ -182,16 +182,17 @@ selectors_on_a_disc(void **state)
 	struct drape_err err;
 
 	(void)state;
-	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = * 1\n");
+	/* the 5 x 5 disc is its grid less the four corners (test_cloth) */
+	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = * 0\n");
 	st = new_stepper(&sc);
-	assert_int_equal(stepper_network(st)->pr.nnodes, 3);	/* (1..3, 1) */
+	assert_int_equal(stepper_network(st)->pr.nnodes, 3);	/* (1..3, 0) */
 	stepper_free(st);
 	scene_free(&sc);
-	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = 0 *\n");
+	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[pin]\nnodes = 0 0, -1 0, 0 -1, -1 -1\n");
 	assert_null(stepper_new(&sc, &err));
 	assert_non_null(strstr(err.msg, "test.scene:14: nodes: the set has no node on the disc"));
 	scene_free(&sc);
-	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[load]\nnodes = 2 0\nforce = 0 1 0 N\n");
+	parse_text(&sc, DISC_CLOTH("5 5", "disc") "[load]\nnodes = 4 4\nforce = 0 1 0 N\n");
 	assert_null(stepper_new(&sc, &err));
 	assert_non_null(strstr(err.msg, "test.scene:14: nodes: the set has no node on the disc"));
 	scene_free(&sc);

@@ -49,7 +49,7 @@ check_obj(const char *path)
 		fprintf(stderr, "drape check: %s: out of memory\n", path);
 		return EXIT_RUNTIME;
 	}
-	printf("%s\tobj\t-\t-\t%ld\t-\n", path, r.pairs);
+	printf("%s\tobj\t-\t-\t%ld\t-\t-\t-\n", path, r.pairs);
 	if (r.cut)
 		say_cut(path, "", r.candidates, r.tests, r.pairs, m.ntri);
 	mesh_free(&m);
@@ -67,7 +67,8 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 	struct step_failure fail;
 	struct check_result r;
 	double frame, next = 0;
-	long k = 0, frames = 0, worst_pairs = 0, worst_inside = 0, bad_frames = 0;
+	long k = 0, frames = 0, worst_pairs = 0, worst_inside = 0, bad_frames = 0, worst_edges = 0;
+	double deepest = 0;
 	bool cut = false;
 	int rc = EXIT_OK;
 
@@ -100,11 +101,13 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 			}
 			if (r.pairs > 0 || r.inside > 0) {
 				bad_frames++;
-				printf("%s\tt=%.6g\tstep=%ld\t-\t%ld\t%ld\n", path, rep.t, rep.step,
-				    r.pairs, r.inside);
+				printf("%s\tt=%.6g\tstep=%ld\t-\t%ld\t%ld\t%ld\t%.3f\n", path, rep.t,
+				    rep.step, r.pairs, r.inside, r.edges_in, r.edge_depth * 1e3);
 			}
 			worst_pairs = r.pairs > worst_pairs ? r.pairs : worst_pairs;
 			worst_inside = r.inside > worst_inside ? r.inside : worst_inside;
+			worst_edges = r.edges_in > worst_edges ? r.edges_in : worst_edges;
+			deepest = r.edge_depth > deepest ? r.edge_depth : deepest;
 			k++;
 			next = (double)k * (double)every * frame;
 		}
@@ -116,8 +119,8 @@ check_scene(const char *path, long every, const char *const *sets, size_t nsets)
 		}
 	}
 	if (rc == EXIT_OK || rc == EXIT_BLOWUP)
-		printf("%s\tscene\t%ld\t%ld\t%ld\t%ld\n", path, frames, bad_frames, worst_pairs,
-		    worst_inside);
+		printf("%s\tscene\t%ld\t%ld\t%ld\t%ld\t%ld\t%.3f\n", path, frames, bad_frames,
+		    worst_pairs, worst_inside, worst_edges, deepest * 1e3);
 	if (rc == EXIT_OK && bad_frames > 0)
 		rc = EXIT_FOUND;
 	else if (rc == EXIT_OK && cut)
@@ -223,8 +226,10 @@ cmd_check(int argc, char **argv)
 		return rc;
 	}
 	/* columns: file, kind, frames audited, frames with a fault, the most
-	 * intersecting pairs in one frame, the most nodes inside obstacles */
-	printf("file\tkind\tframes\tbad_frames\tpairs\tinside\n");
+	 * intersecting pairs in one frame, the most nodes inside obstacles,
+	 * the most edges into them and the deepest edge (reported, not a
+	 * fault yet: drape(1), check) */
+	printf("file\tkind\tframes\tbad_frames\tpairs\tinside\tedges_in\tedge_depth_mm\n");
 	for (i = optind; i < argc; i++) {
 		int r = ends_with(argv[i], ".obj") ? check_obj(argv[i]) :
 		    check_scene(argv[i], every, sets, nsets);

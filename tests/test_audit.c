@@ -1,12 +1,15 @@
 /* test_audit.c: the intersection audit: exact orientation on inputs that
  * fool plain doubles, triangle pairs with known answers (touching counts),
- * agreement with a second exact test on many degenerate pairs, and the
- * sweep against brute force on grid meshes. */
+ * agreement with a second exact test on many degenerate pairs, the
+ * sweep against brute force on grid meshes, and a state's cloth edges
+ * through the corner of a box and the rim of a disc. */
 #include "testutil.h"
 
 #include <time.h>
 
 #include "audit.h"
+#include "check.h"
+#include "cloth.h"
 
 /* xorshift64*: noise that is the same on every run. */
 static double
@@ -513,6 +516,74 @@ test_cross(void **state)
 	free(tri);
 }
 
+/*
+ * One cloth edge laid across a solid's corner with both its nodes outside:
+ * the nodes' count sees nothing, the edges' count sees the edge and how
+ * deep it goes, and nothing once the edge is lifted clear. The box's
+ * corner at x = y = 0.1 m: the edge from (0.094, 0.103) to (0.103, 0.094)
+ * goes deepest at its middle, (0.0985, 0.0985), 1.5 mm under both faces.
+ * The disc's rim at r = 0.05 m, y = 0.1 m: the edge from (0.046, 0.103)
+ * to (0.052, 0.095) is 0.008 t - 0.003 under the top and 0.004 - 0.006 t
+ * inside the side, deepest at t = 1/2, 1 mm.
+ */
+static void
+test_edges_through_solids(void **state)
+{
+	static const struct {
+		const char *solid;
+		vec3 a, b, lifted;
+		double depth;
+	} cases[] = {
+		{ "[box]\nmin = 0 0 0 m\nmax = 0.1 0.1 0.1 m\n", { 0.094, 0.103, 0.05 },
+		  { 0.103, 0.094, 0.05 }, { 0.103, 0.104, 0.05 }, 1.5e-3 },
+		{ "[disc]\ncentre = 0 0.1 0 m\nradius = 5 cm\nheight = 0.1 m\n", { 0.046, 0.103, 0 },
+		  { 0.052, 0.095, 0 }, { 0.052, 0.104, 0 }, 1e-3 },
+	};
+	size_t c;
+
+	(void)state;
+	for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+		char text[1024];
+		struct scene sc;
+		struct cloth cl;
+		struct drape_err err;
+		struct check_result r;
+		double *x;
+		int a, b, p;
+
+		snprintf(text, sizeof text, "[simulation]\nduration = 1 s\n[cloth]\nnodes = 3 3\n"
+		    "spacing = 10 mm\nweight = 100 g/m2\nthickness = 0.5 mm\nmodulus_warp = 1 MPa\n"
+		    "modulus_weft = 1 MPa\nshear_modulus = 0.1 MPa\nbending_warp = 1 uN*m\n"
+		    "bending_weft = 1 uN*m\n%s", cases[c].solid);
+		parse_text(&sc, text);
+		if (cloth_build(&cl, &sc, &err) != 0)
+			fail_msg("%s", err.msg);
+		x = malloc(3 * (size_t)cl.n * sizeof *x);
+		assert_non_null(x);
+		/* every node far beside the solid, but the first edge's two */
+		for (p = 0; p < cl.n; p++)
+			v3_store(x + 3 * p, v3(0.5 + 0.01 * p, 1, 0.5));
+		a = cl.edge[0];
+		b = cl.edge[1];
+		v3_store(x + 3 * a, cases[c].a);
+		v3_store(x + 3 * b, cases[c].b);
+		assert_int_equal(check_state(&sc, &cl, x, &r), 0);
+		print_message("%s: %ld nodes inside, %ld edges in, deepest %.6f mm\n",
+		    c == 0 ? "box" : "disc", r.inside, r.edges_in, r.edge_depth * 1e3);
+		assert_int_equal(r.pairs, 0);
+		assert_int_equal(r.inside, 0);
+		assert_int_equal(r.edges_in, 1);
+		assert_double_equal(r.edge_depth, cases[c].depth, 1e-9);
+		v3_store(x + 3 * b, cases[c].lifted);
+		assert_int_equal(check_state(&sc, &cl, x, &r), 0);
+		assert_int_equal(r.edges_in, 0);
+		assert_true(r.edge_depth == 0);
+		free(x);
+		cloth_free(&cl);
+		scene_free(&sc);
+	}
+}
+
 int
 main(void)
 {
@@ -526,6 +597,7 @@ main(void)
 		cmocka_unit_test(test_self_pushed_through),
 		cmocka_unit_test(test_self_noisy),
 		cmocka_unit_test(test_cross),
+		cmocka_unit_test(test_edges_through_solids),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

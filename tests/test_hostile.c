@@ -869,7 +869,7 @@ integer_options_in_range(void **state)
 	drape(&r, args);
 	if (r.status != 0)
 		fail_msg("status %d: %s", r.status, r.err);
-	assert_non_null(strstr(r.out, "\tscene\t2\t0\t0\t0\n"));
+	assert_non_null(strstr(r.out, "\tscene\t2\t0\t0\t0\t0\t0.000\n"));
 	snprintf(args, sizeof args, "run --headless --record '%s/int.drr' '%s'", dir, scene);
 	drape(&r, args);
 	assert_int_equal(r.status, 0);
@@ -1472,7 +1472,7 @@ check_work_bounded(void **state)
 	snprintf(args, sizeof args, "check '%s/stack.obj'", dir);
 	drape(&r, args);
 	expect(&r, 1, "stack.obj: ", "none intersected so far, which proves nothing");
-	assert_non_null(strstr(r.out, "stack.obj\tobj\t-\t-\t0\t-\n"));
+	assert_non_null(strstr(r.out, "stack.obj\tobj\t-\t-\t0\t-\t-\t-\n"));
 
 	/* the library's count: the same bound, and a cloth far below it */
 	assert_non_null(x = malloc(9 * (size_t)n * sizeof *x));

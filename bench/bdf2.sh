@@ -31,7 +31,8 @@
 #      within 0.01 of each other), charted (bdf2-drape.png); beside them
 #      RK4 again at BENCH_BDF2_RK4_FINE_DT, for how far the reference
 #      itself moves with its step (method rk4-fine in the csv), and each
-#      run's count of folds, which the coefficient moves with;
+#      run's folds (its summary's drape folds), which the coefficient
+#      moves with;
 # and charts the refinement (bdf2.png: wall per simulated second against
 # nodes, bdf2 and fast, Blender and Bullet when peers.sh has run).
 # Timing runs one job at a time.
@@ -270,52 +271,27 @@ dcsv=$results/bdf2-drape.csv
 if want 5; then
 	coef_of() { awk '/^drape coefficient / { print $3 }'; }
 	nodes_of() { awk '/^network / { for (i = 1; i <= NF; i++) if ($i == "of") { print $(i + 1); exit } }'; }
-	# The skirt's folds in a --final-obj mesh: the maxima of its outline
-	# around the vertical axis (the largest horizontal radius in each of
-	# 72 bins of angle, smoothed 1-2-1) that stand 5 mm over the lowest
-	# bin on each side before the next maximum. At 10 mm the coefficient
-	# moves with the fold count the run happens to pick, so it is printed
-	# beside it.
-	folds_of() {
-		[ -f "$1" ] || { echo -; return; }
-		awk -v nb=72 -v prom=0.005 '/^v / {
-			r = sqrt($2 * $2 + $4 * $4); b = int((atan2($4, $2) / 6.283185307179586 + 0.5) * nb) % nb
-			if (r > R[b]) R[b] = r }
-		END { for (i = 0; i < nb; i++) S[i] = (R[(i + nb - 1) % nb] + 2 * R[i] + R[(i + 1) % nb]) / 4
-			n = 0
-			for (i = 0; i < nb; i++) if (S[i] > S[(i + nb - 1) % nb] && S[i] >= S[(i + 1) % nb]) M[n++] = i
-			c = 0
-			for (k = 0; k < n; k++) {
-				i = M[k]; a = S[i]; b = S[i]
-				for (t = M[(k + n - 1) % n]; t != i; t = (t + 1) % nb) if (S[t] < a) a = S[t]
-				for (t = i; t != M[(k + 1) % n]; t = (t + 1) % nb) if (S[t] < b) b = S[t]
-				if (n > 1 && S[i] - a >= prom && S[i] - b >= prom) c++
-			}
-			print c }' "$1"
-	}
+	folds_of() { awk '/^drape folds / { print ($3 ~ /^[0-9]+$/ ? $3 : "-") }'; }
 	echo "method,spacing_mm,nodes,drape_coefficient,wall_s,folds" >"$dcsv"
-	rm -f "$tmp/fin.obj"
-	"$drape" run --headless --integrator rk4 --final-obj "$tmp/fin.obj" "$srcdir/scenes/drape.scene" \
-	    >"$tmp/out" 2>"$tmp/err" || { echo "$prog: drape rk4:"; head -n 3 "$tmp/err"; } >&2
-	echo "rk4,10,$(nodes_of <"$tmp/out"),$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out"),$(folds_of "$tmp/fin.obj")" >>"$dcsv"
+	"$drape" run --headless --integrator rk4 "$srcdir/scenes/drape.scene" >"$tmp/out" 2>"$tmp/err" ||
+		{ echo "$prog: drape rk4:"; head -n 3 "$tmp/err"; } >&2
+	echo "rk4,10,$(nodes_of <"$tmp/out"),$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out"),$(folds_of <"$tmp/out")" >>"$dcsv"
 	# The coefficient at 10 mm depends on which folds the falling skirt
 	# picks, and that on the path: RK4's own moves with its step.
 	[ -t 2 ] && printf '\r  the drape, RK4 at dt %s s          ' "$rk4_fine_dt" >&2
-	rm -f "$tmp/fin.obj"
-	"$drape" run --headless --integrator rk4 --set "simulation.dt=$rk4_fine_dt s" --final-obj "$tmp/fin.obj" \
+	"$drape" run --headless --integrator rk4 --set "simulation.dt=$rk4_fine_dt s" \
 	    "$srcdir/scenes/drape.scene" >"$tmp/out" 2>"$tmp/err" ||
 		{ echo "$prog: drape rk4 at $rk4_fine_dt s:"; head -n 3 "$tmp/err"; } >&2
-	echo "rk4-fine,10,$(nodes_of <"$tmp/out"),$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out"),$(folds_of "$tmp/fin.obj")" >>"$dcsv"
+	echo "rk4-fine,10,$(nodes_of <"$tmp/out"),$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out"),$(folds_of <"$tmp/out")" >>"$dcsv"
 	for s in $spacings; do
 		# the same 30 cm specimen on squares of s mm: 300/s + 1 nodes a side
 		n=$(awk -v s="$s" 'BEGIN { printf "%d", 300 / s + 1.5 }')
 		edit_scene "$srcdir/scenes/drape.scene" "cloth.nodes=$n $n" "cloth.spacing=$s mm" >"$tmp/d$s.scene"
 		[ -t 2 ] && printf '\r  the drape at %s mm          ' "$s" >&2
-		rm -f "$tmp/fin.obj"
-		"$drape" run --headless --integrator bdf2 --final-obj "$tmp/fin.obj" "$tmp/d$s.scene" \
-		    >"$tmp/out" 2>"$tmp/err" || { echo "$prog: drape bdf2 $s mm:"; head -n 3 "$tmp/err"; } >&2
+		"$drape" run --headless --integrator bdf2 "$tmp/d$s.scene" >"$tmp/out" 2>"$tmp/err" ||
+			{ echo "$prog: drape bdf2 $s mm:"; head -n 3 "$tmp/err"; } >&2
 		nodes=$(nodes_of <"$tmp/out")
-		echo "bdf2,$s,${nodes:--},$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out"),$(folds_of "$tmp/fin.obj")" >>"$dcsv"
+		echo "bdf2,$s,${nodes:--},$(coef_of <"$tmp/out"),$(wall_of <"$tmp/out"),$(folds_of <"$tmp/out")" >>"$dcsv"
 	done
 	[ -t 2 ] && printf '\r%60s\r' '' >&2
 	awk -F, 'NR > 1 { printf "  the Cusick drape, %s on %s mm squares (%s nodes): coefficient %s in %s folds (%s s)\n", $1, $2, $3, $4, $6, $5 }' "$dcsv"

@@ -42,6 +42,11 @@ fill_drape(struct run_record *rec, const double *x)
 	rec->support = V3_PI * disc->radius * disc->radius;
 	rec->flat = mesh_area(cl->x0, cl->tri, cl->ntri);
 	rec->dc = drape_coefficient(rec->shadow, rec->support, rec->flat);
+	/* a lobe counts from a thirtieth of the specimen's radius out (5 mm
+	 * on the standard 30 cm specimen), and at least a square: the flat
+	 * disc's staircase rim is ragged by under one */
+	rec->folds = drape_folds(x, cl->edge, cl->nedges, disc->centre.x, disc->centre.z,
+	    DRAPE_RASTER, fmax(sqrt(rec->flat / V3_PI) / 30, cl->h));
 	rec->drape = 1;
 }
 
@@ -267,6 +272,7 @@ visit(struct writer *w, const struct run_record *rec)
 	num(w, "cusick", "support_area", dc, rec->support);
 	num(w, "cusick", "specimen_area", dc, rec->flat);
 	num(w, "cusick", "raster", dc, rec->raster);
+	integer(w, "cusick", "folds", dc && rec->folds >= 0, rec->folds);
 	snprintf(hash, sizeof hash, "%016" PRIx64, rec->hash);
 	str(w, NULL, "state_hash", hash);
 }

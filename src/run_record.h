@@ -38,6 +38,7 @@ struct run_record {
 	/* the Cusick drape test, for a disc-shaped cloth over a [disc] */
 	int drape;		/* 0: not one; 1: computed; -1: out of memory for the shadow */
 	double dc, shadow, support, flat, raster;
+	int folds;		/* the outline's lobes (shadow.h), -1: not counted */
 
 	/* from the caller */
 	const char *const *sets;	/* the --set overrides as given */

@@ -124,6 +124,10 @@ drape_summary(FILE *f, const struct run_record *rec)
 	fprintf(f, "drape coefficient %.4f (shadow %.6f m2, support disc %.6f m2, flat specimen "
 	    "%.6f m2; %.2g mm raster)\n", rec->dc, rec->shadow, rec->support, rec->flat,
 	    rec->raster * 1e3);
+	if (rec->folds >= 0)
+		fprintf(f, "drape folds  %d\n", rec->folds);
+	else
+		fprintf(f, "drape folds  not counted (the outline does not go round the disc)\n");
 }
 
 void

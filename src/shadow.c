@@ -128,3 +128,62 @@ drape_coefficient(double shadow, double support, double flat)
 {
 	return flat > support ? (shadow - support) / (flat - support) : NAN;
 }
+
+/*
+ * The folds, as a drape tester counts its shadow's lobes: the outline's
+ * largest horizontal distance from the axis in each of SHADOW_FOLD_BINS
+ * sectors, smoothed 1-2-1, and the maxima that stand at least prom over
+ * the lowest sector on each side before the next maximum (a lone bump of
+ * a ragged outline does not). The outline is sampled along the edges,
+ * every cell or closer, so that a coarse cloth fills every sector its
+ * skirt crosses; a sector left empty (a cloth that does not go round the
+ * axis) gives -1.
+ */
+int
+drape_folds(const double *x, const int *edge, size_t nedges, double cx, double cz,
+    double cell, double prom)
+{
+	double r[SHADOW_FOLD_BINS], s[SHADOW_FOLD_BINS];
+	int max[SHADOW_FOLD_BINS], nmax = 0, folds = 0, k, j;
+	size_t e;
+
+	for (k = 0; k < SHADOW_FOLD_BINS; k++)
+		r[k] = -1;
+	for (e = 0; e < nedges; e++) {
+		const double *a = x + 3 * edge[2 * e], *b = x + 3 * edge[2 * e + 1];
+		double len = hypot(b[0] - a[0], b[2] - a[2]);
+		long m = (long)fmin(ceil(len / cell), 1e6), i;
+
+		for (i = 0; i <= m; i++) {
+			double t = m > 0 ? (double)i / (double)m : 0;
+			double px = a[0] + t * (b[0] - a[0]) - cx, pz = a[2] + t * (b[2] - a[2]) - cz;
+			double rho = hypot(px, pz), f = (atan2(pz, px) / (2 * V3_PI) + 0.5) * SHADOW_FOLD_BINS;
+
+			if (!(f >= 0))
+				return -1;	/* not finite */
+			k = (int)f % SHADOW_FOLD_BINS;
+			r[k] = fmax(r[k], rho);
+		}
+	}
+	for (k = 0; k < SHADOW_FOLD_BINS; k++)
+		if (r[k] < 0)
+			return -1;
+	for (k = 0; k < SHADOW_FOLD_BINS; k++)
+		s[k] = (r[(k + SHADOW_FOLD_BINS - 1) % SHADOW_FOLD_BINS] + 2 * r[k] +
+		    r[(k + 1) % SHADOW_FOLD_BINS]) / 4;
+	for (k = 0; k < SHADOW_FOLD_BINS; k++)
+		if (s[k] > s[(k + SHADOW_FOLD_BINS - 1) % SHADOW_FOLD_BINS] &&
+		    s[k] >= s[(k + 1) % SHADOW_FOLD_BINS])
+			max[nmax++] = k;
+	for (j = 0; nmax > 1 && j < nmax; j++) {
+		int at = max[j], before = max[(j + nmax - 1) % nmax], after = max[(j + 1) % nmax];
+		double low_before = s[at], low_after = s[at];
+
+		for (k = before; k != at; k = (k + 1) % SHADOW_FOLD_BINS)
+			low_before = fmin(low_before, s[k]);
+		for (k = at; k != after; k = (k + 1) % SHADOW_FOLD_BINS)
+			low_after = fmin(low_after, s[k]);
+		folds += s[at] - low_before >= prom && s[at] - low_after >= prom;
+	}
+	return folds;
+}

@@ -1,6 +1,6 @@
-/* shadow.h: the shadow a cloth casts on the horizontal (x-z) plane, and the
+/* shadow.h: the shadow a cloth casts on the horizontal (x-z) plane, the
  * drape coefficient of the Cusick drape test (BS 5058, ISO 9073-9, AATCC
- * TM 219) computed from it.
+ * TM 219) computed from it, and the folds of its outline.
  *
  * The shadow is the union of the cloth's triangles projected along y. It is
  * found on a raster of square cells, a cell counting when its centre lies in
@@ -36,5 +36,20 @@ double mesh_area(const double *x, const int *tri, size_t ntri);
  * the flat specimen A_0: 1 for a specimen that stays flat, near 0 for one
  * that hangs straight down. NaN when A_0 <= A_d (nothing overhangs). */
 double drape_coefficient(double shadow, double support, double flat);
+
+/* The outline's sectors for drape_folds: 5 degrees each. */
+#define SHADOW_FOLD_BINS 72
+
+/*
+ * The folds of a draped specimen, seen from above: the lobes of its
+ * outline around the vertical axis through (cx, cz), each standing at
+ * least prom (m) out from the outline on both sides between it and the
+ * next lobe. x holds the vertices (3 coordinates each), edge the nedges
+ * edges (2 vertex numbers each), sampled every cell (m, > 0) or closer.
+ * -1 when the outline does not go all round the axis or a vertex is not
+ * finite.
+ */
+int drape_folds(const double *x, const int *edge, size_t nedges, double cx, double cz,
+    double cell, double prom);
 
 #endif

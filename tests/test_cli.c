@@ -191,6 +191,7 @@ drape_coefficient_and_hash(void **state)
 	assert_int_equal(sscanf(at, "drape coefficient %lf", &dc), 1);
 	print_message("drape coefficient after 30 ms: %.4f\n", dc);
 	assert_true(dc > 0.9 && dc <= 1.01);	/* barely started to fall */
+	assert_non_null(strstr(r.out, "\ndrape folds  0\n"));	/* flat: no lobe */
 	assert_non_null(strstr(r.out, "hash         per fill "));
 	at = strstr(r.out, "hash histogram ");
 	assert_non_null(at);

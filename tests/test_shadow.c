@@ -153,6 +153,54 @@ edge_cases(void **state)
 	assert_true(isnan(drape_coefficient(0.03, 0.03, 0.02)));	/* nothing overhangs */
 }
 
+/*
+ * A ring of n points, radius r0 + a cos(k theta) about (0.3, -0.2) (off
+ * the origin: the axis is the disc's), joined by edges: a skirt of k
+ * lobes, each standing 2a out from the troughs beside it.
+ */
+static int
+ring_folds(int k, double a, double noise, double gap)
+{
+	enum { N = 400 };
+	static double x[3 * N];
+	static int edge[2 * N];
+	int i, ne = 0;
+
+	for (i = 0; i < N; i++) {
+		double th = 2 * V3_PI * i / N, r = 0.12 + a * cos(k * th) + noise * sin(37.0 * i);
+
+		x[3 * i] = 0.3 + r * cos(th);
+		x[3 * i + 1] = 0.1;
+		x[3 * i + 2] = -0.2 + r * sin(th);
+		/* a gap leaves out the edges of that part of the turn */
+		if (th >= gap) {
+			edge[2 * ne] = i;
+			edge[2 * ne + 1] = (i + 1) % N;
+			ne++;
+		}
+	}
+	return drape_folds(x, edge, (size_t)ne, 0.3, -0.2, 0.5e-3, 0.005);
+}
+
+static void
+folds_of_an_outline(void **state)
+{
+	int k;
+
+	(void)state;
+	for (k = 3; k <= 14; k++)
+		assert_int_equal(ring_folds(k, 0.01, 0, 0), k);
+	/* lobes whose rise (2a, a tenth less once the sectors smooth it) is
+	 * under the 5 mm asked for are no folds */
+	assert_int_equal(ring_folds(8, 0.002, 0, 0), 0);
+	assert_int_equal(ring_folds(8, 0.0032, 0, 0), 8);
+	assert_int_equal(ring_folds(0, 0, 0, 0), 0);	/* a circle */
+	/* a ragged outline: ripples of 1 mm on 9 lobes */
+	assert_int_equal(ring_folds(9, 0.01, 0.001, 0), 9);
+	/* an outline that does not go round: half of it left out */
+	assert_int_equal(ring_folds(6, 0.01, 0, V3_PI), -1);
+}
+
 int
 main(void)
 {
@@ -162,6 +210,7 @@ main(void)
 		cmocka_unit_test(flat_disc_has_dc_one),
 		cmocka_unit_test(vertical_cloth_casts_no_shadow),
 		cmocka_unit_test(edge_cases),
+		cmocka_unit_test(folds_of_an_outline),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -263,6 +263,13 @@ rebuild(const struct jval *rec, char *buf, size_t len)
 		    "specimen %.6f m2; %.2g mm raster)\n", num(rec, "cusick.coefficient"),
 		    num(rec, "cusick.shadow_area"), num(rec, "cusick.support_area"),
 		    num(rec, "cusick.specimen_area"), num(rec, "cusick.raster") * 1e3);
+	if (!is_null(rec, "cusick.coefficient") && !is_null(rec, "cusick.folds"))
+		line(buf, len, "drape folds  %.0f\n", num(rec, "cusick.folds"));
+	else if (!is_null(rec, "cusick.coefficient"))
+		line(buf, len, "drape folds  not counted (the outline does not go round the "
+		    "disc)\n");
+	else
+		assert_true(is_null(rec, "cusick.folds"));
 	line(buf, len, "state hash   %s\n", text(rec, "state_hash"));
 }
 

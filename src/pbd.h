@@ -70,6 +70,7 @@ struct pbd {
 	 * index (-1 for none), the surface's nearest point and normal */
 	int *touch;
 	double *touch_at;	/* 6 a node: q, n */
+	size_t *edge_near;	/* the edges near a box (pbd.c edges_out) */
 	long substeps;		/* so far */
 };
 

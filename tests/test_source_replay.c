@@ -711,25 +711,25 @@ step_labels_agree(void **state)
 		for (i = 0; i < n; i++)
 			assert_int_equal(step_shown(ev[i].step), k);
 	}
-	/* node 12: edge-edge contacts in step 42; in 43 two node-face
-	 * contacts and then five edge-edge ones, of which the log keeps the
+	/* node 538: edge-edge contacts in step 42; in 43 a node-face
+	 * contact and then five edge-edge ones, of which the log keeps the
 	 * latest EVLOG_PER_NODE: four edge-edge listed, no node-face */
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 42));
 	src.state(src.ctx, &s);
 	assert_int_equal(evlog_init(&log, s.cl->n), 0);
 	src.history(src.ctx, &log);
 	text_init(&t, 40);
-	screen_node(&t, &s, 12, NULL, &log);
+	screen_node(&t, &s, 538, NULL, &log);
 	for (i = 0; i < (size_t)t.n && strstr(t.line[i], "42 e-e") == NULL; i++)
 		;
 	if (i == (size_t)t.n)
-		fail_msg("step 42: node 12's edge-edge contact of step 42 is not listed");
+		fail_msg("step 42: node 538's edge-edge contact of step 42 is not listed");
 	assert_true(src.seek(src.ctx, SOURCE_GOTO, 43));
 	src.state(src.ctx, &s);
 	evlog_clear(&log);
 	src.history(src.ctx, &log);
 	text_init(&t, 40);
-	screen_node(&t, &s, 12, NULL, &log);
+	screen_node(&t, &s, 538, NULL, &log);
 	for (i = 0, k = 0; i < (size_t)t.n; i++)
 		k += strstr(t.line[i], "43 n-f") != NULL;
 	assert_int_equal(k, 0);

@@ -225,7 +225,7 @@ replay_session 200 60 48
 
 # issue 30: keys typed while a seek runs are one seek to where the last
 # leads (a digest's first seek recomputes its events: up to 0.5 s, and
-# each key made another); at step 42 the inspector lists node 12's
+# each key made another); at step 42 the inspector lists node 538's
 # contact of step 42, as drape events does (it said "none yet": steps were
 # labelled one apart)
 echo "== replay: a burst of keys, step labels"
@@ -235,12 +235,12 @@ if wait_for 'prompt\$'; then
 	if wait_for 'tablecloth.drr +replay +step 0 '; then
 		tm send-keys -t t End Home End PPage Home Right Right Right
 		wait_for 'replay +step 6 ' || fail "a burst of keys did not end at step 6"
-		tm send-keys -t t g 4 2 Enter Tab Tab / 1 2 Enter
-		wait_for 'node 12 \(i' &&
-			wait_for "\\| *42 e-e " || fail "node 12's contact of step 42 not at step 42"
-		"$DRAPE" events --node 12 --from 42 --to 42 "$top/replays/tablecloth.drr" | cut -f1,3 |
+		tm send-keys -t t g 4 2 Enter Tab Tab / 5 3 8 Enter
+		wait_for 'node 538 \(i' &&
+			wait_for "\\| *42 e-e " || fail "node 538's contact of step 42 not at step 42"
+		"$DRAPE" events --node 538 --from 42 --to 42 "$top/replays/tablecloth.drr" | cut -f1,3 |
 			grep -qx "$(printf '42\tedge-edge')" ||
-			fail "drape events does not give node 12's contact at step 42"
+			fail "drape events does not give node 538's contact at step 42"
 		tm send-keys -t t q
 		wait_for 'EXIT=[0-9]+'
 	fi

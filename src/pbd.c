@@ -426,17 +426,18 @@ solve_shear(struct pbd *pb, double h, double *x)
 static double
 box_edge_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *tp, vec3 *n)
 {
-	double al[6], be[6], cand[17], best = -INFINITY;
+	double pa[3], pb[3], l[3], h[3], al[6], be[6], cand[17], best = -INFINITY, nv[3] = { 0 };
 	int k, j, nc = 0, face = 0;
 
+	v3_store(pa, a);
+	v3_store(pb, b);
+	v3_store(l, lo);
+	v3_store(h, hi);
 	for (k = 0; k < 3; k++) {
-		double ak = k == 0 ? a.x : k == 1 ? a.y : a.z, bk = k == 0 ? b.x : k == 1 ? b.y : b.z;
-		double lk = k == 0 ? lo.x : k == 1 ? lo.y : lo.z, hk = k == 0 ? hi.x : k == 1 ? hi.y : hi.z;
-
-		al[2 * k] = ak - lk;		/* over the low face */
-		be[2 * k] = bk - ak;
-		al[2 * k + 1] = hk - ak;	/* under the high face */
-		be[2 * k + 1] = ak - bk;
+		al[2 * k] = pa[k] - l[k];	/* over the low face */
+		be[2 * k] = pb[k] - pa[k];
+		al[2 * k + 1] = h[k] - pa[k];	/* under the high face */
+		be[2 * k + 1] = pa[k] - pb[k];
 	}
 	cand[nc++] = 0;
 	cand[nc++] = 1;
@@ -463,8 +464,8 @@ box_edge_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *tp, vec3 *n)
 			face = f;
 		}
 	}
-	*n = v3(face == 0 ? -1 : face == 1 ? 1 : 0, face == 2 ? -1 : face == 3 ? 1 : 0,
-	    face == 4 ? -1 : face == 5 ? 1 : 0);
+	nv[face / 2] = face % 2 ? 1 : -1;
+	*n = v3_load(nv);
 	return best;
 }
 

@@ -31,11 +31,17 @@
  *
  * Contacts are terms of Phi, found once a step at its start:
  *   - analytic obstacles: a node within reach of one gets a penalty
- *     k (c - phi(x))^2 / 2 while its signed distance phi is under the
- *     clearance c, with phi and its normal taken at each iterate, so that
- *     a box's edges and a sphere are followed exactly; k is a multiple of
- *     the node's m / beta^2, so the rest penetration under a pile is
- *     microns;
+ *     k (c - phi(x))^2 / 2 while its distance phi from the plane of the
+ *     solid's nearest point at the step's start is under the clearance c
+ *     (the solid is convex: all of it lies behind that plane); k is a
+ *     multiple of the node's m / beta^2, so the rest penetration under a
+ *     pile is microns;
+ *   - a box's edges: a cloth edge whose nearest point to a box lies
+ *     between its nodes gets the same penalty on its least distance to
+ *     the box (taken at each iterate, the box's edges rounded by that
+ *     clearance), at half the nodes' clearance, shared by the nodes as
+ *     that point's weights (Bridson et al. 2002's edge contact); found at
+ *     the step's start and, as the solve moves the cloth, at its end;
  *   - the cloth against itself and against meshes: contacts.h's pairs,
  *     each held a thickness apart on the plane it had at the step's start
  *     by a penalty of the same kind;
@@ -84,6 +90,20 @@ struct bdf2_obstacle_contact {
 	double n[3], q[3];	/* the surface's normal and nearest point there */
 };
 
+/* A cloth edge within reach of a box, for one step: its point at t (the
+ * weights wa = 1 - t and wb = t of its nodes) held off the plane of the
+ * box's nearest point at the step's start. */
+struct bdf2_edge_contact {
+	int edge, a, b, obstacle;	/* the cloth's edge, its nodes */
+	double wa, wb;
+	double k;		/* N/m: the penalty's stiffness */
+	double phi;		/* m: the point's distance at the iterate */
+	double n[3], q[3];	/* the plane's normal and a point of it */
+	int ab, ba;		/* H's blocks (a, b) and (b, a), or -1 */
+	bool smooth;		/* its two nodes' block is in the preconditioner */
+	double chol[21];	/* that 6 x 6 block's Cholesky factor, packed by rows */
+};
+
 /* A contact pair's terms at the iterate (contacts.h's pair of the same
  * index). */
 struct bdf2_pair_term {
@@ -120,6 +140,10 @@ struct bdf2 {
 	double *udamp;		/* per spring: its unit vector at the step's start */
 	struct bdf2_obstacle_contact *oc;
 	size_t noc, occap;
+	struct bdf2_edge_contact *ec;
+	size_t nec, eccap;
+	unsigned char *emark;	/* per cloth edge: has a contact this step */
+	size_t nsmooth;		/* the edges whose blocks the preconditioner solves */
 	struct bdf2_pair_term *pt;
 	size_t ptcap;
 	/* the pairs that push at the iterate (its system's), and those whose

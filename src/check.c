@@ -9,8 +9,9 @@
  * section: the distance to a convex solid (each analytic obstacle is one)
  * is convex along a line, so the search closes on its one minimum. 60
  * steps shrink the interval 0.618^60 = 3e-13 times, far under a cloth's
- * roundings. The search is the audit's own: the collision code never
- * looks between a cloth edge's nodes for an analytic solid.
+ * roundings. The search is the audit's own, written apart from the
+ * methods' (pbd.c's depth into a box, bdf2.c's, obstacle.h), which it
+ * checks.
  */
 static double
 least_along(const struct obstacle *ob, vec3 a, vec3 b)

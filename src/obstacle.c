@@ -402,3 +402,95 @@ obstacle_free(struct obstacle *o)
 	free(o->file);
 	o->file = NULL;
 }
+
+/* The depth is the least of six functions linear in t (one a face), so
+ * its maximum over [0, 1] lies at an end or where two of them cross: 17
+ * candidates, no search. */
+double
+obstacle_box_segment_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *tp, vec3 *n)
+{
+	double pa[3], pb[3], l[3], h[3], al[6], be[6], cand[17], best = -INFINITY, nv[3] = { 0 };
+	int k, j, nc = 0, face = 0;
+
+	v3_store(pa, a);
+	v3_store(pb, b);
+	v3_store(l, lo);
+	v3_store(h, hi);
+	for (k = 0; k < 3; k++) {
+		al[2 * k] = pa[k] - l[k];	/* over the low face */
+		be[2 * k] = pb[k] - pa[k];
+		al[2 * k + 1] = h[k] - pa[k];	/* under the high face */
+		be[2 * k + 1] = pa[k] - pb[k];
+	}
+	cand[nc++] = 0;
+	cand[nc++] = 1;
+	for (k = 0; k < 6; k++)
+		for (j = k + 1; j < 6; j++)
+			if (be[k] != be[j]) {
+				double t = (al[j] - al[k]) / (be[k] - be[j]);
+
+				if (t > 0 && t < 1)
+					cand[nc++] = t;
+			}
+	for (j = 0; j < nc; j++) {
+		double d = INFINITY;
+		int f = 0;
+
+		for (k = 0; k < 6; k++)
+			if (al[k] + be[k] * cand[j] < d) {
+				d = al[k] + be[k] * cand[j];
+				f = k;
+			}
+		if (d > best) {
+			best = d;
+			*tp = cand[j];
+			face = f;
+		}
+	}
+	nv[face / 2] = face % 2 ? 1 : -1;
+	*n = v3_load(nv);
+	return best;
+}
+
+/* Golden section: the signed distance to a convex solid (each analytic
+ * obstacle is one) is convex along a line, so the search closes on its
+ * one minimum; 48 steps shrink [0, 1] 0.618^48 = 1e-10 times. */
+double
+obstacle_segment_nearest(const struct obstacle *o, vec3 a, vec3 b, double *tp)
+{
+	const double g = 0.6180339887498949;
+	double lo = 0, hi = 1, t1 = hi - g, t2 = g, f1, f2, t, f, fa, fb;
+	vec3 ab = v3_sub(b, a);
+	int k;
+
+	f1 = obstacle_distance(o, v3_madd(a, ab, t1), NULL, NULL);
+	f2 = obstacle_distance(o, v3_madd(a, ab, t2), NULL, NULL);
+	for (k = 0; k < 48; k++)
+		if (f1 <= f2) {
+			hi = t2;
+			t2 = t1;
+			f2 = f1;
+			t1 = hi - g * (hi - lo);
+			f1 = obstacle_distance(o, v3_madd(a, ab, t1), NULL, NULL);
+		} else {
+			lo = t1;
+			t1 = t2;
+			f1 = f2;
+			t2 = lo + g * (hi - lo);
+			f2 = obstacle_distance(o, v3_madd(a, ab, t2), NULL, NULL);
+		}
+	t = f1 <= f2 ? t1 : t2;
+	f = f1 <= f2 ? f1 : f2;
+	/* the ends, which the search only nears */
+	fa = obstacle_distance(o, a, NULL, NULL);
+	fb = obstacle_distance(o, b, NULL, NULL);
+	if (fa <= f && fa <= fb) {
+		t = 0;
+		f = fa;
+	} else if (fb < f) {
+		t = 1;
+		f = fb;
+	}
+	*tp = t;
+	return f;
+}

@@ -57,6 +57,20 @@ double obstacle_distance(const struct obstacle *o, vec3 p, vec3 *q, vec3 *normal
  * axis its normal lies along. */
 void obstacle_bounds(const struct obstacle *o, vec3 *lo, vec3 *hi);
 
+/* The deepest point of segment a-b into the axis-aligned box [lo, hi]:
+ * the depth of a point is its distance inside the nearest face, negative
+ * outside (then the most any face's plane has it out, which is no more
+ * than its distance). Returns the segment's greatest depth, its t in
+ * [0, 1] (the first on a tie) and the outward normal of the face it is
+ * deepest under. A box's edge cut by a cloth edge whose ends are outside
+ * is found exactly (pbd.c, bdf2.c keep edges out of boxes by it). */
+double obstacle_box_segment_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *t, vec3 *normal);
+
+/* The least signed distance to an analytic solid along segment a-b, and
+ * its t in [0, 1] (an end when the least is there). About 50 calls of
+ * obstacle_distance. */
+double obstacle_segment_nearest(const struct obstacle *o, vec3 a, vec3 b, double *t);
+
 /* Checks the shape and normalises a plane's normal. Returns 0, or -1 with
  * "what is wrong" in err, without a file:line prefix (the caller knows it):
  * a zero or non-finite plane normal, a box with min >= max on an axis, a

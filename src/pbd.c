@@ -419,56 +419,6 @@ solve_shear(struct pbd *pb, double h, double *x)
 #define EDGE_CLEARANCE 0.5
 #define EDGE_PASSES 4
 
-/* The deepest point of segment a-b into box [lo, hi] (grown already):
- * the depth is the least of six functions linear in t, so its maximum over
- * [0, 1] lies at an end or where two of them cross. Returns the depth
- * (<= 0: the segment stays out) and its t and outward normal. */
-static double
-box_edge_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *tp, vec3 *n)
-{
-	double pa[3], pb[3], l[3], h[3], al[6], be[6], cand[17], best = -INFINITY, nv[3] = { 0 };
-	int k, j, nc = 0, face = 0;
-
-	v3_store(pa, a);
-	v3_store(pb, b);
-	v3_store(l, lo);
-	v3_store(h, hi);
-	for (k = 0; k < 3; k++) {
-		al[2 * k] = pa[k] - l[k];	/* over the low face */
-		be[2 * k] = pb[k] - pa[k];
-		al[2 * k + 1] = h[k] - pa[k];	/* under the high face */
-		be[2 * k + 1] = pa[k] - pb[k];
-	}
-	cand[nc++] = 0;
-	cand[nc++] = 1;
-	for (k = 0; k < 6; k++)
-		for (j = k + 1; j < 6; j++)
-			if (be[k] != be[j]) {
-				double t = (al[j] - al[k]) / (be[k] - be[j]);
-
-				if (t > 0 && t < 1)
-					cand[nc++] = t;
-			}
-	for (j = 0; j < nc; j++) {
-		double d = INFINITY;
-		int f = 0;
-
-		for (k = 0; k < 6; k++)
-			if (al[k] + be[k] * cand[j] < d) {
-				d = al[k] + be[k] * cand[j];
-				f = k;
-			}
-		if (d > best) {
-			best = d;
-			*tp = cand[j];
-			face = f;
-		}
-	}
-	nv[face / 2] = face % 2 ? 1 : -1;
-	*n = v3_load(nv);
-	return best;
-}
-
 static void
 edges_out(struct pbd *pb, double *x, int o, const struct obstacle *ob, double margin)
 {
@@ -495,7 +445,7 @@ edges_out(struct pbd *pb, double *x, int o, const struct obstacle *ob, double ma
 			vec3 a = v3_load(x + 3 * pa), b = v3_load(x + 3 * pb_), n, q;
 			double wa = pb->w[pa], wb = pb->w[pb_], t = 0, lack, den;
 
-			lack = box_edge_depth(lo, hi, a, b, &t, &n);
+			lack = obstacle_box_segment_depth(lo, hi, a, b, &t, &n);
 			/* an end lacking it is the nodes' contact, not the edge's */
 			if (!(lack > 0) || t <= 0 || t >= 1)
 				continue;

@@ -90,15 +90,16 @@ struct bdf2_obstacle_contact {
 	double n[3], q[3];	/* the surface's normal and nearest point there */
 };
 
-/* A cloth edge within reach of a box, for one step: its point at t (the
- * weights wa = 1 - t and wb = t of its nodes) held off the plane of the
- * box's nearest point at the step's start. */
+/* A cloth edge within reach of a box, for one step: its least distance
+ * to the box held over a clearance (bdf2.c edge_gap). The nearest point's
+ * t, normal and distance are the iterate's (the last assembly's or
+ * end's). */
 struct bdf2_edge_contact {
 	int edge, a, b, obstacle;	/* the cloth's edge, its nodes */
-	double wa, wb;
+	double wa, wb;		/* the nearest point's weights, 1 - t and t */
 	double k;		/* N/m: the penalty's stiffness */
-	double phi;		/* m: the point's distance at the iterate */
-	double n[3], q[3];	/* the plane's normal and a point of it */
+	double phi;		/* m: the edge's distance to the box */
+	double n[3], q[3];	/* the box's normal and point nearest the edge */
 	int ab, ba;		/* H's blocks (a, b) and (b, a), or -1 */
 	bool smooth;		/* its two nodes' block is in the preconditioner */
 	double chol[21];	/* that 6 x 6 block's Cholesky factor, packed by rows */

@@ -166,6 +166,9 @@ struct bdf2 {
 	/* Newton's stop on a small decrease (bdf2.c NEWTON_DECREASE, 0 with
 	 * a scene's tolerance) and Phi where the last line search went */
 	double decrease, phi_taken;
+	/* the forcing term's (bdf2.c CG_REDUCTION_TIGHT): the last solve's
+	 * |g| and |g + H dx|, its linear model's */
+	double gnorm_last, model_last;
 	/* so far */
 	long steps, newton, cg, unconverged, cuts;
 	int last_newton, last_cg;

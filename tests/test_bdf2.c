@@ -51,8 +51,10 @@ free_fall_bdf2(void **state)
 	    "%.3g m/s from v0 + g t\n", t, h, worst, worst_v);
 	/* to the Newton iterations' tolerance (bdf2.c NEWTON_REL: a step is
 	 * done when the next would move no node by 1 % of the step's largest
-	 * motion, and that last one is taken, its conjugate gradients to 1 %:
-	 * some 1e-4 of the step's motion left in each step) */
+	 * motion, and that last one is taken, its conjugate gradients to 1 %,
+	 * the forcing term's tightest, where the linear model holds as here:
+	 * some 1e-4 of the step's motion left in each step; at 10 % the cloth
+	 * ends 18 mm off) */
 	assert_true(worst < 1e-4);
 	assert_true(worst_v < 1e-3);
 	stepper_free(st);

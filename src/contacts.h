@@ -25,9 +25,12 @@ struct collide;
 /* A pair is kept if its boxes overlap and its separation at the step's
  * start, less CONTACTS_REACH_MOTION times its predicted relative motion
  * (an allowance for the step's accelerations), is under CONTACTS_REACH
- * thicknesses. */
+ * thicknesses; or, for a solver that holds a pair only along its
+ * normal n0 (contacts_find's closing), less what that motion closes along
+ * n0 and CONTACTS_REACH_SLACK times the motion. */
 #define CONTACTS_REACH 1.25
 #define CONTACTS_REACH_MOTION 1.5
+#define CONTACTS_REACH_SLACK 0.5
 
 struct contact_pair {
 	int nv;			/* 4: a vertex against a triangle, or two edges */
@@ -59,11 +62,19 @@ void contacts_free(struct contacts *ct);
 /* No pairs this step (nothing to collide with). */
 void contacts_clear(struct contacts *ct);
 
+/* Whether a pair at separation d (from its second side to its first at
+ * the step's start), whose vertices part by at most rel over the step and
+ * its separation by moved (its weights' sum of their motions), may come
+ * within reach (CONTACTS_REACH above; closing or not). */
+bool contacts_may_reach(vec3 d, vec3 moved, double rel, double thickness, bool closing);
+
 /* The pairs of the step from y0 (positions, velocities) and its length h:
  * the broad phase's candidates (found by collide_candidates into col)
- * kept where they may come within the thickness. 0, 1 when col's stop
- * flag is set (a signal: the step is given up), or -1 out of memory. */
-int contacts_find(struct contacts *ct, const struct collide *col, const double *y0, double h);
+ * kept where they may come within the thickness (closing: along their
+ * normal, CONTACTS_REACH_SLACK). 0, 1 when col's stop flag is set (a
+ * signal: the step is given up), or -1 out of memory. */
+int contacts_find(struct contacts *ct, const struct collide *col, const double *y0, double h,
+    bool closing);
 
 /* One substep's projection of every pair, on cloth positions x (3n; the
  * meshes' vertices are where contacts_find saw them) moved from xprev in

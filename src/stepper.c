@@ -419,13 +419,16 @@ constrain_resting(struct stepper *st, double h)
 	}
 }
 
-/* The fast path's contacts from state y over the next h: the broad
- * phase's pairs for the predicted motion, each node's box widened by one
- * and a half thicknesses and half its own motion (an allowance for the
- * step's accelerations), and of those the ones within reach. */
+/* The fast path's and bdf2's contacts from state y over the next h: the
+ * broad phase's pairs for the predicted motion, each node's box widened
+ * by one and a half thicknesses and half its own motion (an allowance for
+ * the step's accelerations), and of those the ones within reach (for
+ * bdf2, which holds a pair only along its normal, those that close along
+ * it: contacts.h). */
 static enum step_status
 find_contacts(struct stepper *st, const double *y, double h, struct step_failure *f)
 {
+	bool closing = st->in.kind == INTEG_BDF2;
 	struct drape_err cerr;
 
 	contacts_clear(&st->ct);
@@ -434,7 +437,7 @@ find_contacts(struct stepper *st, const double *y, double h, struct step_failure
 	if (collide_candidates(&st->col, y, h, 1.5 * st->sc->mat.thickness, 0.5,
 	    CONTACTS_REACH * st->sc->mat.thickness, CONTACTS_REACH_MOTION, &cerr) != 0)
 		return collisions_failed(st, f, &cerr);
-	switch (contacts_find(&st->ct, &st->col, y, h)) {
+	switch (contacts_find(&st->ct, &st->col, y, h, closing)) {
 	case 0:
 		return STEP_OK;
 	case 1:

@@ -8,6 +8,7 @@
 #include "broad_impl.h"	/* white-box: the held pairs and flat patches */
 #include "ccd.h"
 #include "collide.h"
+#include "contacts.h"
 #include "mesh.h"
 #include "narrow.h"
 
@@ -265,6 +266,40 @@ shipped_clean(const char *name, int integrator)
 	 * RK4 ends at 3e-8 J); a strip still moving as it is fed is near it */
 	assert_true(r.ke_end < (sc.integrator == INTEG_FAST ? 0.1 : 5e-3) * r.ke_max);
 	scene_free(&sc);
+}
+
+/* bdf2's pairs are those that close along their normals over the step
+ * (contacts.h): the tablecloth crumpling on its floor stays clean. */
+static void
+test_tablecloth_bdf2_clean(void **state)
+{
+	(void)state;
+	shipped_clean("tablecloth.scene", INTEG_BDF2);
+}
+
+/* The pairs' keep rule: a vertex 5 mm over a triangle, the sides parting
+ * by up to 6 mm over the step, thickness 1 mm. Any way (fast's), every
+ * pair that motion might close is kept; closing (bdf2's), only those
+ * whose separation closes along its normal, or that are near already. */
+static void
+test_contacts_closing(void **state)
+{
+	vec3 d = v3(0, 5e-3, 0), up = v3(0, 6e-3, 0), down = v3(0, -6e-3, 0);
+	vec3 across = v3(6e-3, 0, 0);
+
+	(void)state;
+	assert_true(contacts_may_reach(d, up, 6e-3, 1e-3, false));
+	assert_true(contacts_may_reach(d, across, 6e-3, 1e-3, false));
+	assert_false(contacts_may_reach(d, up, 6e-3, 1e-3, true));	/* parting */
+	assert_false(contacts_may_reach(d, across, 6e-3, 1e-3, true));	/* sliding past */
+	assert_true(contacts_may_reach(d, down, 6e-3, 1e-3, true));	/* closing */
+	assert_true(contacts_may_reach(v3(0, 1e-3, 0), up, 6e-3, 1e-3, true));	/* near */
+	/* the slack: parting, 1.25 + 0.5 * 6 = 4.25 mm */
+	assert_true(contacts_may_reach(v3(0, 4.2e-3, 0), up, 6e-3, 1e-3, true));
+	assert_false(contacts_may_reach(v3(0, 4.3e-3, 0), up, 6e-3, 1e-3, true));
+	/* nothing moving: within CONTACTS_REACH thicknesses, either rule */
+	assert_true(contacts_may_reach(v3(0, 1.2e-3, 0), v3(0, 0, 0), 0, 1e-3, true));
+	assert_false(contacts_may_reach(v3(0, 1.3e-3, 0), v3(0, 0, 0), 0, 1e-3, false));
 }
 
 static void test_strip_clean(void **state) { (void)state; shipped_clean("strip.scene", INTEG_RK4); }
@@ -1074,6 +1109,8 @@ main(void)
 		cmocka_unit_test(test_tablecloth_fast_clean),
 		cmocka_unit_test(test_strip_clean),
 		cmocka_unit_test(test_tablecloth_implicit_clean),
+		cmocka_unit_test(test_tablecloth_bdf2_clean),
+		cmocka_unit_test(test_contacts_closing),
 		cmocka_unit_test(test_implicit_resting_on_box),
 		cmocka_unit_test(test_seed_figures),
 	};

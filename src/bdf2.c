@@ -1810,6 +1810,59 @@ forcing_term(struct bdf2 *b, bool first, size_t n3)
 	return eta;
 }
 
+/*
+ * A step in flight (no node held, no contact pushing at its start) first
+ * goes where inertia, mass damping, gravity and loads alone would take
+ * each node (the least of Phi without the cloth's own energy and
+ * contacts), searched along from x as a Newton step is. A free fall's step
+ * is exactly that, and Newton then stops at its first residual with no
+ * solve, where it took two assemblies, multigrid setups and solves.
+ * Where something holds the cloth the move runs it into its support: the
+ * peers' table at 25^2 resting on its cube took 7.16 Newton iterations a
+ * step against 5.39, and the undamped hanging strip, its top pinned, kept
+ * 59.5 % of RK4's energy above rest at 1 s against 103 % (its Newton
+ * stops leave a stretched cloth's error, not a swinging one's). The
+ * peers' table's first 0.25 s (falling, then landing): Newton iterations
+ * a step 4.24 -> 3.32 at 25^2, 5.56 -> 4.08 at 50^2, 6.00 -> 4.96 at
+ * 100^2 (bench-history.md, 2026-12-07). false when there is no such step
+ * or the search takes none.
+ */
+static bool
+flight_step(struct bdf2 *b, double phi)
+{
+	const struct forces *fo = b->fo;
+	const struct cloth *cl = fo->cl;
+	size_t n3 = 3 * (size_t)cl->n, i;
+	double ib2 = 1 / (b->beta * b->beta), cd = fo->damping / b->beta;
+	int p, l, k;
+
+	if (b->nact > 0 || b->pr->nnodes > 0)
+		return false;
+	for (i = 0; i < b->noc; i++)
+		if (b->oc[i].lambda > 0)
+			return false;
+	for (p = 0; p < cl->n; p++) {
+		vec3 w = v3_add(v3_add(v3_scale(v3_load(b->target + 3 * p), ib2),
+		    v3_scale(v3_load(b->xhat + 3 * p), cd)), v3_load(fo->g));
+
+		v3_store(b->dx + 3 * p, v3_sub(v3_scale(w, 1 / (ib2 + cd)), v3_load(b->x + 3 * p)));
+	}
+	for (l = 0; l < fo->nloads; l++) {
+		const struct load_group *lg = &fo->loads[l];
+
+		if (!(b->t1 >= lg->start && b->t1 < lg->stop))
+			continue;
+		for (k = 0; k < lg->n; k++)
+			v3_addto(b->dx + 3 * lg->node[k], v3_scale(v3_load(lg->f),
+			    1 / (cl->mass[lg->node[k]] * (ib2 + cd))));
+	}
+	/* not downhill: no search (its fallback would use the last step's
+	 * preconditioner, which a resumed run has not) */
+	if (!(dot(b->g, b->dx, n3) < 0))
+		return false;
+	return line_search(b, phi);
+}
+
 /* Newton's iterations from b->x; y is the step's start, *phi_first Phi
  * at the step's first iterate (NAN before it: set here). The decrease
  * that stops them is a part of the whole step's, not of this pass's: a
@@ -1822,7 +1875,7 @@ static int
 newton(struct bdf2 *b, const double *y, double *phi_first)
 {
 	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
-	bool converged = false;
+	bool converged = false, flown = false;
 	double phi;
 	int it;
 
@@ -1835,6 +1888,13 @@ newton(struct bdf2 *b, const double *y, double *phi_first)
 		if (b->last_residual <= b->tol) {
 			converged = true;
 			break;
+		}
+		if (!flown && isnan(*phi_first)) {	/* no solve yet this step */
+			flown = true;
+			if (flight_step(b, phi)) {
+				it--;	/* not an iteration: no solve */
+				continue;
+			}
 		}
 		assemble(b, b->x);
 		precondition_setup(b);

@@ -3,6 +3,7 @@
  * leaves out as flat is broad_flat.c's, the pairs it holds from one
  * search to the next broad_held.c's. */
 #include <limits.h>
+#include <math.h>
 
 #include "broad_impl.h"
 
@@ -11,11 +12,16 @@
  * Whether two sets of points, in boxes of positions pa and pb at the step's
  * start (lo then hi, 6 each), moving by motions in boxes ma and mb, may lie
  * within near plus share times their relative motion (a broad_want's
- * near): the largest gap between the position boxes along an axis is at
- * most their distance, and the Minkowski difference of the motion boxes
- * bounds their relative motion. Two parts of a cloth that move together,
- * whose boxes of the step overlap by as much as they move, are tested as
- * if at rest.
+ * near): the distance between the position boxes (the root of their
+ * gaps' squares along the axes) is at most their points', and the
+ * Minkowski difference of the motion boxes bounds their relative motion.
+ * Two parts of a cloth that move together, whose boxes of the step overlap
+ * by as much as they move, are tested as if at rest. The boxes' distance
+ * rather than their largest gap along an axis (up to 1.7 times less, for
+ * a square beside a node diagonally): 2.6 % fewer instructions in the
+ * peers' table's first 0.25 s at 25^2 under bdf2 (callgrind), the same
+ * pairs. Shrunk by a part in 1e12, so that no pair the contacts' own
+ * test would keep (contacts.c, its distance rounded otherwise) is lost.
  */
 static int
 near_overlap(const double *pa, const double *ma, const double *pb, const double *mb, double near,
@@ -25,11 +31,12 @@ near_overlap(const double *pa, const double *ma, const double *pb, const double 
 	int k;
 
 	for (k = 0; k < 3; k++) {
-		double g1 = pb[k] - pa[3 + k], g2 = pa[k] - pb[3 + k];
+		double g1 = pb[k] - pa[3 + k], g2 = pa[k] - pb[3 + k], g = g1 > g2 ? g1 : g2;
 
-		gap = g1 > gap ? g1 : gap;
-		gap = g2 > gap ? g2 : gap;
+		if (g > 0)
+			gap += g * g;
 	}
+	gap = sqrt(gap) * (1 - 1e-12);
 	/* boxes within reach at the start, as neighbours in a cloth are at
 	 * every level of the trees: no need of the motion */
 	if ((r = gap - near) <= 0)

@@ -163,9 +163,10 @@ struct bdf2 {
 	 * budget (bdf2_correct_energy) */
 	double e_start, e_solved, e_budget;
 	double last_restored, restored;	/* J: given back, the last step and in all */
-	/* Newton's stop on a small decrease (bdf2.c NEWTON_DECREASE, 0 with
-	 * a scene's tolerance) and Phi where the last line search went */
-	double decrease, phi_taken;
+	/* Newton's stop on a small decrease (bdf2.c NEWTON_DECREASE, and
+	 * NEWTON_DECREASE_CONTACT where a contact pushes; 0 with a scene's
+	 * tolerance) and Phi where the last line search went */
+	double decrease, decrease_contact, phi_taken;
 	/* the forcing term's (bdf2.c CG_REDUCTION_TIGHT): the last solve's
 	 * |g| and |g + H dx|, its linear model's */
 	double gnorm_last, model_last;

@@ -938,7 +938,7 @@ potential(struct bdf2 *b, const double *x, double *g)
 	for (l = 0; l < fo->nloads; l++) {
 		const struct load_group *lg = &fo->loads[l];
 
-		if (!(b->t1 >= lg->start && b->t1 < lg->stop))
+		if (!load_active(lg, b->t1))
 			continue;
 		for (k = 0; k < lg->n; k++) {
 			e -= v3_dot(v3_load(lg->f), v3_load(x + 3 * lg->node[k]));
@@ -1706,7 +1706,7 @@ system_energy(struct bdf2 *b, const double *y, double *f)
 	for (l = 0; l < fo->nloads; l++) {
 		const struct load_group *lg = &fo->loads[l];
 
-		if (!(b->t1 >= lg->start && b->t1 < lg->stop))
+		if (!load_active(lg, b->t1))
 			continue;
 		for (k = 0; k < lg->n; k++) {
 			e -= v3_dot(v3_load(lg->f), v3_load(y + 3 * lg->node[k]));
@@ -1805,31 +1805,6 @@ stiffen_overrun(struct bdf2 *b)
 	return n;
 }
 
-/* The forcing term of the next solve (CG_REDUCTION_TIGHT above), g being
- * the iterate's gradient; first: the step's first solve. */
-static double
-forcing_term(struct bdf2 *b, bool first, size_t n3)
-{
-	double gnorm = sqrt(dot(b->g, b->g, n3)), eta = CG_REDUCTION_TIGHT;
-	size_t i;
-
-	if (first) {
-		if (b->nact > 0)
-			eta = CG_REDUCTION_LOOSE;
-		for (i = 0; i < b->noc && eta < CG_REDUCTION_LOOSE; i++)
-			if (b->oc[i].lambda > 0)
-				eta = CG_REDUCTION_LOOSE;
-	} else if (b->gnorm_last > 0) {
-		/* (E and W's safeguard against a sudden tightening after
-		 * loose solves, eta at least eta_last^1.618 where that is over
-		 * 0.1, never acts under CG_REDUCTION_LOOSE) */
-		eta = fabs(gnorm - b->model_last) / b->gnorm_last;
-	}
-	eta = fmin(fmax(eta, CG_REDUCTION_TIGHT), CG_REDUCTION_LOOSE);
-	b->gnorm_last = gnorm;
-	return eta;
-}
-
 /* Whether a contact pushes at the iterate (lag_normal_forces'). */
 static bool
 pushing(const struct bdf2 *b)
@@ -1842,6 +1817,27 @@ pushing(const struct bdf2 *b)
 		if (b->oc[i].lambda > 0)
 			return true;
 	return false;
+}
+
+/* The forcing term of the next solve (CG_REDUCTION_TIGHT above), g being
+ * the iterate's gradient; first: the step's first solve. */
+static double
+forcing_term(struct bdf2 *b, bool first, size_t n3)
+{
+	double gnorm = sqrt(dot(b->g, b->g, n3)), eta = CG_REDUCTION_TIGHT;
+
+	if (first) {
+		if (pushing(b))
+			eta = CG_REDUCTION_LOOSE;
+	} else if (b->gnorm_last > 0) {
+		/* (E and W's safeguard against a sudden tightening after
+		 * loose solves, eta at least eta_last^1.618 where that is over
+		 * 0.1, never acts under CG_REDUCTION_LOOSE) */
+		eta = fabs(gnorm - b->model_last) / b->gnorm_last;
+	}
+	eta = fmin(fmax(eta, CG_REDUCTION_TIGHT), CG_REDUCTION_LOOSE);
+	b->gnorm_last = gnorm;
+	return eta;
 }
 
 /*
@@ -1881,7 +1877,7 @@ flight_step(struct bdf2 *b, double phi)
 	for (l = 0; l < fo->nloads; l++) {
 		const struct load_group *lg = &fo->loads[l];
 
-		if (!(b->t1 >= lg->start && b->t1 < lg->stop))
+		if (!load_active(lg, b->t1))
 			continue;
 		for (k = 0; k < lg->n; k++)
 			v3_addto(b->dx + 3 * lg->node[k], v3_scale(v3_load(lg->f),

@@ -99,7 +99,7 @@ forces_stopped(const struct forces *fo)
 	return stop_set(fo->stop);
 }
 
-static int
+bool
 load_active(const struct load_group *lg, double t)
 {
 	return t >= lg->start && t < lg->stop;

@@ -18,6 +18,9 @@ struct load_group {
 	double start, stop;
 };
 
+/* Whether load group lg acts at time t: over [start, stop). */
+bool load_active(const struct load_group *lg, double t);
+
 struct forces {
 	const struct cloth *cl;
 	double g[3];		/* m/s2 */

@@ -10,9 +10,11 @@
 #      inside; the cloth's edges into an obstacle reported beside them);
 #   2. refinement: the peers' 0.24 m table (lib.sh peers_table) at 25^2,
 #      50^2 and 100^2 over its first BENCH_BDF2_UNTIL seconds, and whole
-#      (2 s) at 25^2, bdf2 and fast (both with bvh): wall per simulated
-#      second, the growth per 4x nodes (target at most 6x), bdf2 audited
-#      on every frame; Blender's and Bullet's figures are bench/peers.sh's
+#      (2 s) at 25^2 from each of BENCH_BDF2_HEIGHTS (the median, the
+#      range, and how many come to rest on the cube: a tenth of a
+#      millimetre decides it), bdf2 and fast (both with bvh): wall per
+#      simulated second, the growth per 4x nodes (target at most 6x), bdf2
+#      audited on every frame; Blender's and Bullet's figures are bench/peers.sh's
 #      (results/peers-refine.csv, printed beside when there);
 #   3. energy: (a) undamped scenes with no input (the tablecloth, the
 #      Cusick drape, the peers' table) never above their starting energy
@@ -46,6 +48,8 @@
 #   BENCH_BDF2_SIZES        nodes per side for 2 (default "25 50 100")
 #   BENCH_BDF2_UNTIL        simulated seconds for 2 (default 0.25)
 #   BENCH_BDF2_SPACINGS     the drape's squares for 5, mm (default "10 5 2.5")
+#   BENCH_BDF2_HEIGHTS      the cloth's drops for 2's whole run, m (default
+#                           "0.2 0.2001 0.2002 0.2003 0.2005 0.201")
 #   BENCH_BDF2_RK4_FINE_DT  RK4's finer step for 5, s (default 5e-5; its own is 1.325e-4)
 #   BENCH_BDF2_SKIP         parts to leave out, e.g. "2 5"
 #   BENCH_RESULTS, DRAPE, BENCH_SRCDIR, GNUPLOT
@@ -56,12 +60,16 @@ rruns=${BENCH_BDF2_REFINE_RUNS:-1}
 sizes=${BENCH_BDF2_SIZES:-25 50 100}
 until_t=${BENCH_BDF2_UNTIL:-0.25}
 spacings=${BENCH_BDF2_SPACINGS:-10 5 2.5}
+heights=${BENCH_BDF2_HEIGHTS:-0.2 0.2001 0.2002 0.2003 0.2005 0.201}
 rk4_fine_dt=${BENCH_BDF2_RK4_FINE_DT:-5e-5}
 skip=" ${BENCH_BDF2_SKIP:-} "
 check_seconds "$until_t" BENCH_BDF2_UNTIL
 case $rruns in '' | *[!0-9]* | 0) die "BENCH_BDF2_REFINE_RUNS must be a whole number > 0" ;; esac
 for n in $sizes; do
 	case $n in '' | *[!0-9]* | 0 | 1) die "BENCH_BDF2_SIZES are whole numbers > 1, not '$n'" ;; esac
+done
+for y in $heights; do
+	case $y in '' | *[!0-9.]* | *.*.*) die "BENCH_BDF2_HEIGHTS are heights in m, not '$y'" ;; esac
 done
 want() { case $skip in *" $1 "*) return 1 ;; esac; return 0; }
 verdict() { awk -v ok="$1" 'BEGIN { print (ok + 0 ? "met" : "missed") }'; }
@@ -156,12 +164,21 @@ if want 2; then
 			echo "$m,$((n * n)),$until_t,$w,$(fmt "$wps"),$pa,$in,$fr,$ei,$ed" >>"$rcsv"
 		done
 	done
-	# and whole at 25^2
+	# and whole at 25^2, from BENCH_BDF2_HEIGHTS: where the cloth comes to
+	# rest (on the cube's edge or slid off it to the floor) turns on a
+	# tenth of a millimetre of its drop, and so does the cost of its rest
 	peers_table 25 1 bdf2 | sed 's/^broad = grid$/broad = bvh/' >"$tmp/pw.scene"
+	: >"$tmp/hw"
 	for m in bdf2 fast; do
-		"$drape" run --headless --integrator "$m" "$tmp/pw.scene" >"$tmp/out" 2>"$tmp/err" ||
-			{ echo "$prog: 25^2 whole $m:"; head -n 3 "$tmp/err"; } >&2
-		w=$(wall_of <"$tmp/out")
+		for y in $heights; do
+			[ -t 2 ] && printf '\r  25^2 whole: %s from %s m          ' "$m" "$y" >&2
+			"$drape" run --headless --integrator "$m" --set "cloth.origin=-0.12 $y -0.12 m" \
+				"$tmp/pw.scene" >"$tmp/out" 2>"$tmp/err" ||
+				{ echo "$prog: 25^2 whole $m from $y m:"; head -n 3 "$tmp/err"; } >&2
+			echo "$m $y $(wall_of <"$tmp/out") $(awk '/^energy/ { for (i = 1; i <= NF; i++)
+				if ($i == "gravity") print $(i + 1) + 0 }' "$tmp/out")" >>"$tmp/hw"
+		done
+		w=$(awk -v m="$m" '$1 == m { print $3 }' "$tmp/hw" | median)
 		pa=- in=- fr=- ei=- ed=-
 		[ $m = bdf2 ] && read -r pa in fr ei ed < <(audit "$tmp/pw.scene" --set simulation.integrator=bdf2)
 		echo "$m,625,2,$w,$(awk -v w="$w" 'BEGIN { printf "%.3g", w / 2 }'),$pa,$in,$fr,$ei,$ed" >>"$rcsv"
@@ -176,6 +193,11 @@ if want 2; then
 			for (i = 2; i <= n; i++) { r = v[i] / v[i - 1]; g = g (i > 2 ? ", " : "") sprintf("%.1fx", r); if (r > worst) worst = r }
 			if (g != "") printf "  growth per 4x nodes, %s: %s%s\n", m, g,
 				(m == "bdf2" ? (worst <= 6 ? " (target at most 6x: met)" : " (target at most 6x: missed)") : "") } }' "$rcsv"
+	awk '{ n[$1]++; w[$1] = w[$1] " " $3 / 2; if ($4 > 1e-4) cube[$1]++ }
+		END { for (m in n) { k = split(substr(w[m], 2), v, " "); lo = v[1]; hi = v[1]
+			for (i = 2; i <= k; i++) { if (v[i] < lo) lo = v[i]; if (v[i] > hi) hi = v[i] }
+			printf "  whole 2 s at 25^2, %s from %d drops: %.3g to %.3g s/sim-s (median in the csv), %d at rest on the cube\n",
+				m, n[m], lo, hi, cube[m] + 0 } }' "$tmp/hw"
 	if [ -r "$results/peers-refine.csv" ]; then
 		echo "  the peers (bench/peers.sh, $(date -u -r "$results/peers-refine.csv" '+%Y-%m-%d' 2>/dev/null)):"
 		awk -F, 'NR > 1 { printf "    %-8s %6d nodes: %s s/sim-s\n", $1, $2, $5 }' "$results/peers-refine.csv"

@@ -18,6 +18,12 @@
 # triangles sharing no node), and its nodes inside the cube or under the
 # floor are counted here; drape's own frames are audited by
 # `drape check --every 1` on the scene (every 20 ms).
+# The table's drop changes from round to round (BENCH_PEERS_DROPS, in
+# turn): a tenth of a millimetre decides whether a cloth comes to rest on
+# the cube's edge or slides off it, and so what its rest costs, and a
+# figure from one drop is one draw of that (bench/bdf2.sh part 2). Every
+# method of a round falls from the same height; the audits are of the
+# first round's.
 # Then the refinement: the table's first 0.25 s at 25^2, 50^2 and 100^2
 # (the same 0.24 m, finer), Blender, Bullet, and drape's bdf2 and fast
 # (both with bvh) in the same rounds, BENCH_PEERS_REFINE_RUNS rounds.
@@ -29,6 +35,8 @@
 #
 # Environment:
 #   BENCH_RUNS               rounds (default 3)
+#   BENCH_PEERS_DROPS        the table's starting heights, m, one a round in
+#                            turn (default "0.2 0.2001 0.2002")
 #   BENCH_PEERS_CORE         the core every timed run is pinned to (default 1)
 #   BENCH_PEERS_SKIP         parts to leave out: "table strip refine"
 #   BENCH_PEERS_REFINE_RUNS  rounds of the refinement (default 1)
@@ -51,6 +59,7 @@ command -v taskset >/dev/null 2>&1 || skipped "no taskset (util-linux) to pin th
 . "$(cd "$(dirname "$0")" && pwd)/lib.sh"
 core=${BENCH_PEERS_CORE:-1}
 rruns=${BENCH_PEERS_REFINE_RUNS:-1}
+drops=${BENCH_PEERS_DROPS:-0.2 0.2001 0.2002}
 sizes=${BENCH_PEERS_SIZES:-25 50 100}
 bdt=${BENCH_PEERS_BULLET_DT:-0.001}
 biter=${BENCH_PEERS_BULLET_ITER:-4}
@@ -61,6 +70,12 @@ case $rruns in '' | *[!0-9]* | 0) die "BENCH_PEERS_REFINE_RUNS must be a whole n
 for n in $sizes; do
 	case $n in '' | *[!0-9]* | 0 | 1) die "BENCH_PEERS_SIZES are whole numbers > 1, not '$n'" ;; esac
 done
+ndrops=0
+for y in $drops; do
+	case $y in '' | *[!0-9.]* | *.*.*) die "BENCH_PEERS_DROPS are heights in m, not '$y'" ;; esac
+	ndrops=$((ndrops + 1))
+done
+[ $ndrops -gt 0 ] || die "BENCH_PEERS_DROPS is empty"
 taskset -c "$core" true 2>/dev/null || die "cannot pin to core $core (BENCH_PEERS_CORE)"
 pin() { taskset -c "$core" "$@"; }
 
@@ -68,6 +83,7 @@ echo "peers: $version (commit $commit), $stamp"
 echo "machine: $ncpu cores, ${cpu:-unknown cpu}; load $(load); runs pinned to core $core"
 echo "blender: $("$blender" --version 2>/dev/null | head -n 1); bullet: $(pkg-config --modversion bullet-float64) (float64)"
 echo "median of $runs rounds; in each round the methods run one after another"
+echo "the table's drop, round by round in turn: $drops m"
 echo
 
 "$cxx" -O2 -o "$tmp/bullet-cloth" "$here/peers/bullet-cloth.cpp" \
@@ -92,16 +108,17 @@ peers_strip() {
 		printf "[plane]\npoint = 0 %.9g %.9g m\nnormal = 0 %.9g %.9g\nfriction = 0.1\n", -0.01 * c, 0.01 * s, c, -s
 		printf "[collision]\nself = on\nbroad = grid\nnarrow = ccd\nposition = slide\nfriction = 0.1\n" }'
 }
-# first_obj KIND N SCENE > OBJ: the cloth's first frame in the world
-# (y up: the table as drape has it, the strip tilted), drape's node order
-# (u fastest) and drape's own triangles (from a run of one step)
+# first_obj KIND N SCENE [Y] > OBJ: the cloth's first frame in the world
+# (y up: the table as drape has it, at height Y (0.2 m), the strip
+# tilted), drape's node order (u fastest) and drape's own triangles (from
+# a run of one step)
 first_obj() {
 	"$drape" run --headless --until 1e-6 --final-obj "$tmp/faces.obj" "$3" >/dev/null 2>"$tmp/err" ||
 		die "$3: $(head -n 1 "$tmp/err")"
-	awk -v kind="$1" -v n="$2" 'BEGIN { a = 10 * atan2(0, -1) / 180
+	awk -v kind="$1" -v n="$2" -v y="${4:-0.2}" 'BEGIN { a = 10 * atan2(0, -1) / 180
 		if (kind == "table") { h = 0.24 / (n - 1)
 			for (j = 0; j < n; j++) for (i = 0; i < n; i++)
-				printf "v %.9g 0.2 %.9g\n", -0.12 + i * h, -0.12 + j * h }
+				printf "v %.9g %s %.9g\n", -0.12 + i * h, y, -0.12 + j * h }
 		else { h = 0.005
 			for (j = 0; j < 3; j++) for (i = 0; i < 125; i++)
 				printf "v %.9g %.9g %.9g\n", -0.005 + j * h, 0.01 + i * h * cos(a), i * h * sin(a) } }'
@@ -179,18 +196,32 @@ for s in $scenes; do
 	fi
 	first_obj "$s" 25 "$tmp/$s.scene" >"$tmp/$s-0.obj"
 	echo "$n $(node_mass "$area" "$n") $h $cube" >"$tmp/$s.par"
+	if [ "$s" = table ]; then	# each drop's scene and first frame
+		k=0
+		for y in $drops; do
+			k=$((k + 1))
+			sed "s/^origin = -0.12 0.2 -0.12 m\$/origin = -0.12 $y -0.12 m/" "$tmp/$s.scene" >"$tmp/$s-d$k.scene"
+			grep -q "^origin = -0.12 $y -0.12 m\$" "$tmp/$s-d$k.scene" || die "peers_table's origin is not the one expected"
+			first_obj "$s" 25 "$tmp/$s-d$k.scene" "$y" >"$tmp/$s-d$k-0.obj"
+		done
+	fi
 done
 for r in $(seq 1 "$runs"); do
 	for s in $scenes; do
 		read -r n mass h cube <"$tmp/$s.par"
+		sc=$tmp/$s.scene obj=$tmp/$s-0.obj
+		if [ "$s" = table ]; then	# this round's drop
+			k=$(( (r - 1) % ndrops + 1 ))
+			sc=$tmp/$s-d$k.scene obj=$tmp/$s-d$k-0.obj
+		fi
 		for m in $methods; do
 			[ -t 2 ] && printf '\r  round %d: %s %s          ' "$r" "$s" "$m" >&2
 			out=-
 			[ "$r" = 1 ] && { out=$tmp/frames-$s-$m; mkdir -p "$out"; }
 			case $m in
-			blender) run_blender "$tmp/$s-0.obj" "$out" 63 5 "$mass" "$h" "$cube" ;;
-			bullet) run_bullet "$tmp/$s-0.obj" "$out" 2 63 "$mass" "$h" "$cube" ;;
-			*) run_drape "$tmp/$s.scene" "$m" 2 ;;
+			blender) run_blender "$obj" "$out" 63 5 "$mass" "$h" "$cube" ;;
+			bullet) run_bullet "$obj" "$out" 2 63 "$mass" "$h" "$cube" ;;
+			*) run_drape "$sc" "$m" 2 ;;
 			esac
 			rc=$?
 			w=$(wall_of <"$tmp/out")

@@ -68,9 +68,7 @@ case $rruns in '' | *[!0-9]* | 0) die "BENCH_BDF2_REFINE_RUNS must be a whole nu
 for n in $sizes; do
 	case $n in '' | *[!0-9]* | 0 | 1) die "BENCH_BDF2_SIZES are whole numbers > 1, not '$n'" ;; esac
 done
-for y in $heights; do
-	case $y in '' | *[!0-9.]* | *.*.*) die "BENCH_BDF2_HEIGHTS are heights in m, not '$y'" ;; esac
-done
+check_heights "$heights" BENCH_BDF2_HEIGHTS
 want() { case $skip in *" $1 "*) return 1 ;; esac; return 0; }
 verdict() { awk -v ok="$1" 'BEGIN { print (ok + 0 ? "met" : "missed") }'; }
 fmt() { awk -v x="$1" -v f="${2:-%.3g}" 'BEGIN { if (x == "-" || x == "") print "-"; else printf f, x }'; }

@@ -30,6 +30,14 @@ check_seconds() { # value name
 	awk -v t="$1" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }' ||
 		die "$2 must be seconds > 0, not '$1'"
 }
+check_heights() { # "values" name: each a height in m > 0
+	local y
+	[ -n "$1" ] || die "$2 is empty"
+	for y in $1; do
+		awk -v t="$y" 'BEGIN { exit !(t + 0 > 0 && t ~ /^[0-9.eE+-]+$/) }' ||
+			die "$2 are heights in m > 0, not '$y'"
+	done
+}
 
 # edit_scene SRC 'section.key=value' ... > DST
 # Sets each key in its section (replacing the scene's line, or adding it at

@@ -70,12 +70,8 @@ case $rruns in '' | *[!0-9]* | 0) die "BENCH_PEERS_REFINE_RUNS must be a whole n
 for n in $sizes; do
 	case $n in '' | *[!0-9]* | 0 | 1) die "BENCH_PEERS_SIZES are whole numbers > 1, not '$n'" ;; esac
 done
-ndrops=0
-for y in $drops; do
-	case $y in '' | *[!0-9.]* | *.*.*) die "BENCH_PEERS_DROPS are heights in m, not '$y'" ;; esac
-	ndrops=$((ndrops + 1))
-done
-[ $ndrops -gt 0 ] || die "BENCH_PEERS_DROPS is empty"
+check_heights "$drops" BENCH_PEERS_DROPS
+ndrops=$(echo $drops | wc -w)
 taskset -c "$core" true 2>/dev/null || die "cannot pin to core $core (BENCH_PEERS_CORE)"
 pin() { taskset -c "$core" "$@"; }
 
@@ -200,8 +196,7 @@ for s in $scenes; do
 		k=0
 		for y in $drops; do
 			k=$((k + 1))
-			sed "s/^origin = -0.12 0.2 -0.12 m\$/origin = -0.12 $y -0.12 m/" "$tmp/$s.scene" >"$tmp/$s-d$k.scene"
-			grep -q "^origin = -0.12 $y -0.12 m\$" "$tmp/$s-d$k.scene" || die "peers_table's origin is not the one expected"
+			edit_scene "$tmp/$s.scene" "cloth.origin=-0.12 $y -0.12 m" >"$tmp/$s-d$k.scene"
 			first_obj "$s" 25 "$tmp/$s-d$k.scene" "$y" >"$tmp/$s-d$k-0.obj"
 		done
 	fi

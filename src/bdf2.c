@@ -75,24 +75,13 @@
  * 3e-3 the hanging strip keeps 22 %, at 1e-2 the frictionless tablecloth
  * stays on its box. A scene's tolerance turns it off. */
 #define NEWTON_DECREASE 1e-3
-/* ... or by this part, where a contact pushes at the iterate: the tail
- * there is a landing cloth crumpling against what stopped it, 1 to 4 mm
- * an iteration at the cube's edges and the cloth's free corner, Phi
- * falling by 1e-3 to 1e-2 of the step's decrease each time (the peers'
- * table at 25^2, 0.20 s: 16 iterations). Free motion keeps the tighter
- * stop, its energy being what the step must keep (the hanging strip:
- * 22 % of RK4's at 3e-3 for every step). So: over nine scenes 47.3 to
- * 35.2 Newton iterations a step (summed), the peers' table's first 0.25
- * s 3.32 to 2.12 at 25^2 and 4.08 to 2.68 at 50^2; the tablecloth's
- * energy over its frames within 0.342 of RK4's (root mean square of the
- * relative difference) against 0.473, the peers' 25^2 cloth off its cube
- * at 2 s as RK4's is (with the tighter stop a corner stayed on it), the
- * Cusick drape 0.2556 against RK4's 0.2546 (0.2533), the strip's pile at
- * rest 5.9x RK4's kinetic energy against 3.2x (target 10x), the rest of
- * bench/bdf2.sh parts 3 and 4 as before (bench-history.md, 2026-12-07).
- * The frictionless tablecloth, which stayed on its box with 1e-2 for
- * every step (2026-12-03), slides off as before (gravity energy at 2 s
- * 1.79e-4 J against 1.67e-4). */
+/* ... or by this part, where a contact pushes at the iterate. There the
+ * tail is a landing cloth crumpling against what stopped it, millimetres
+ * an iteration for a thousandth of the step's decrease; free motion keeps
+ * the tighter stop, its energy being what the step must keep (at 3e-3 for
+ * every step the hanging strip kept 22 % of RK4's). Over nine scenes 47.3
+ * -> 35.2 Newton iterations a step, every accuracy target as before
+ * (bench-history.md, bdf2.sh, 2026-12-07). */
 #define NEWTON_DECREASE_CONTACT 1e-2
 
 /* The energy correction scales the free nodes' velocities by at most this
@@ -1845,17 +1834,11 @@ forcing_term(struct bdf2 *b, bool first, size_t n3)
  * goes where inertia, mass damping, gravity and loads alone would take
  * each node (the least of Phi without the cloth's own energy and
  * contacts), searched along from x as a Newton step is. A free fall's step
- * is exactly that, and Newton then stops at its first residual with no
- * solve, where it took two assemblies, multigrid setups and solves.
- * Where something holds the cloth the move runs it into its support: the
- * peers' table at 25^2 resting on its cube took 7.16 Newton iterations a
- * step against 5.39, and the undamped hanging strip, its top pinned, kept
- * 59.5 % of RK4's energy above rest at 1 s against 103 % (its Newton
- * stops leave a stretched cloth's error, not a swinging one's). The
- * peers' table's first 0.25 s (falling, then landing): Newton iterations
- * a step 4.24 -> 3.32 at 25^2, 5.56 -> 4.08 at 50^2, 6.00 -> 4.96 at
- * 100^2 (bench-history.md, 2026-12-07). false when there is no such step
- * or the search takes none.
+ * is exactly that, and Newton stops at its first residual with no solve.
+ * Where something holds the cloth the move runs it into its support (more
+ * iterations on a resting cloth, energy lost on the pinned hanging strip:
+ * bench-history.md, bdf2.sh, 2026-12-07), hence the conditions. false when
+ * there is no such step or the search takes none.
  */
 static bool
 flight_step(struct bdf2 *b, double phi)

@@ -279,6 +279,32 @@ start_history(struct bdf2 *b, double h, const double *y)
 		b->hist[n3 + i] = y[n3 + i] - h * a;
 	}
 	b->has_hist = true;
+	b->h_hist = h;
+}
+
+/*
+ * The history taken h back from the state y instead of b->h_hist, for a
+ * step of another length: positions on the parabola through the state
+ * with its velocity and the history's position, velocities on the line
+ * through the two velocities. BDF2's formula then keeps its constant
+ * coefficients (Nordsieck's way of changing the step of a multistep
+ * method, by interpolating its history, rather than the variable-step
+ * formula's coefficients): what a keyframe holds stays the state one
+ * step back, whatever the steps were.
+ */
+static void
+respace_history(struct bdf2 *b, double h, const double *y)
+{
+	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
+	double r = h / b->h_hist;
+
+	for (i = 0; i < n3; i++) {
+		double x = y[i], v = y[n3 + i], xo = b->hist[i], vo = b->hist[n3 + i];
+
+		b->hist[i] = x - h * v + r * r * (xo - x + b->h_hist * v);
+		b->hist[n3 + i] = v + r * (vo - v);
+	}
+	b->h_hist = h;
 }
 
 /* The formula's terms: beta, xhat, vhat and the inertial target xhat +
@@ -291,6 +317,8 @@ set_formula(struct bdf2 *b, double h, const double *y)
 
 	if (!b->has_hist)
 		start_history(b, h, y);
+	else if (h != b->h_hist)
+		respace_history(b, h, y);
 	b->beta = b->has_hist ? 2 * h / 3 : h;
 	for (i = 0; i < n3; i++) {
 		if (b->has_hist) {
@@ -2118,7 +2146,7 @@ bdf2_events(struct bdf2 *b, struct collide *col, long step, const double *y1)
 
 void
 bdf2_commit(struct bdf2 *b, double h, const double *y0, const double *y1,
-    const unsigned char *moved)
+    const unsigned char *moved, double h_next)
 {
 	const struct cloth *cl = b->fo->cl;
 	size_t n3 = 3 * (size_t)cl->n;
@@ -2144,12 +2172,16 @@ bdf2_commit(struct bdf2 *b, double h, const double *y0, const double *y1,
 		}
 	}
 	b->has_hist = true;
+	b->h_hist = h;
+	if (h_next != h)
+		respace_history(b, h_next, y1);
 }
 
 void
-bdf2_set_history(struct bdf2 *b, const double *hist)
+bdf2_set_history(struct bdf2 *b, const double *hist, double h_hist)
 {
 	b->has_hist = hist != NULL;
+	b->h_hist = h_hist;
 	if (hist != NULL)
 		memcpy(b->hist, hist, 6 * (size_t)b->fo->cl->n * sizeof *b->hist);
 }

@@ -132,6 +132,7 @@ struct bdf2 {
 	 * whether there is one */
 	double *hist;
 	bool has_hist;
+	double h_hist;		/* s: how far back hist is */
 	/* the step's */
 	double t1, beta;
 	const double *x0;	/* positions at the step's start (the caller's y) */
@@ -208,14 +209,16 @@ void bdf2_correct_energy(struct bdf2 *b, double *y1);
  * pairs that pushed active. 0, or -1 out of memory. */
 int bdf2_events(struct bdf2 *b, struct collide *col, long step, const double *y1);
 
-/* After the step is committed: the history of the next one is y0, the
- * state the step started from, made anew along the contacts' normals and
- * wholly for the nodes in moved (the exact check's corrections; may be
- * NULL). */
+/* After the step of h is committed: the history of the next one is y0,
+ * the state the step started from, made anew along the contacts' normals
+ * and wholly for the nodes in moved (the exact check's corrections; may be
+ * NULL), then taken h_next back from y1 (bdf2.c respace_history) when
+ * the next step is to be another length. */
 void bdf2_commit(struct bdf2 *b, double h, const double *y0, const double *y1,
-    const unsigned char *moved);
+    const unsigned char *moved, double h_next);
 
-/* The history for a restored state: hist (6n) or NULL for none. */
-void bdf2_set_history(struct bdf2 *b, const double *hist);
+/* The history for a restored state: hist (6n), h_hist back from it, or
+ * NULL for none. */
+void bdf2_set_history(struct bdf2 *b, const double *hist, double h_hist);
 
 #endif

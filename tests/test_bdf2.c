@@ -7,6 +7,7 @@
  * that falls over a box's edge keeps its edges, not only its nodes, out
  * of the box. */
 #include <math.h>
+#include <string.h>
 
 #include "testutil.h"
 
@@ -165,6 +166,78 @@ lands_and_rests(void **state)
 	scene_free(&sc);
 }
 
+/* text with its "dt = 10 ms" made dt */
+static void
+parse_with_dt(struct scene *sc, const char *text, const char *dt)
+{
+	char buf[2048];
+	const char *at = strstr(text, "dt = 10 ms");
+
+	assert_non_null(at);
+	snprintf(buf, sizeof buf, "%.*s%s%s", (int)(at - text), text, dt, at + strlen("dt = 10 ms"));
+	parse_text(sc, buf);
+}
+
+/* At dt = auto a step after the first is two ticks of 10 ms where the
+ * fastest node would move at most a quarter spacing in them (stepper.c
+ * bdf2_next_dt), one where it moves faster, and always one at a scene's
+ * own dt: a cloth lying on a plane takes 20 ms steps and stays there,
+ * still; one thrown down at it takes more; the one lying at dt = 10 ms
+ * takes 10 ms. Every step ends on a tick, none crosses a frame (20 ms). */
+static void
+long_steps_at_rest(void **state)
+{
+	static const char *const dts[] = { "dt = auto", "dt = auto", "dt = 10 ms" };
+	int c;
+
+	(void)state;
+	for (c = 0; c < 3; c++) {
+		struct scene sc;
+		struct stepper *st;
+		struct energy e;
+		double lowest = INFINITY, first_dt;
+		int p, steps = 0;
+
+		parse_with_dt(&sc, c == 1 ?
+		    FLAT("damping = 2 /s\nvelocity = 0 -1 0 m/s\n[plane]\npoint = 0 0 0 m\n") :
+		    FLAT("damping = 2 /s\n[plane]\npoint = 0 0.0198625 0 m\n"), dts[c]);
+		st = new_stepper(&sc);
+		step_once(st);
+		first_dt = report_of(st).t;
+		while (!stepper_done(st)) {
+			double t0 = report_of(st).t, t1, dt;
+
+			step_once(st);
+			steps++;
+			t1 = report_of(st).t;
+			dt = report_of(st).dt_set;
+			assert_true(t1 == nearbyint(t1 / dt) * dt);	/* a tick, exactly */
+			assert_true(floor(t1 * 50 + 1e-9) - floor(t0 * 50 + 1e-9) <= 1 ||
+			    fabs(t1 * 50 - nearbyint(t1 * 50)) < 1e-9);
+		}
+		for (p = 0; p < cloth_of(st)->n; p++)
+			lowest = fmin(lowest, stepper_x(st)[3 * p + 1] - (c == 1 ? 0 : 0.0198625));
+		stepper_energy(st, &e);
+		print_message("bdf2 %s, %s: first step %g s, %d steps after it in %g s, "
+		    "kinetic %.3g J\n", dts[c], c == 1 ? "thrown down" : "lying", first_dt, steps,
+		    report_of(st).t - first_dt, e.kinetic);
+		assert_true(first_dt == 0.01);	/* the first step is a tick */
+		if (c == 0) {
+			/* a tick to the first frame, then 0.28 s in 20 ms */
+			assert_int_equal(steps, 15);
+			assert_true(lowest > 0);
+			assert_true(lowest < sc.mat.thickness);
+			assert_true(e.kinetic < 1e-15);
+		}
+		if (c == 1)
+			assert_true(steps > 15);
+		if (c == 2)
+			assert_int_equal(steps, 29);
+		stepper_free(st);
+		scene_free(&sc);
+	}
+}
+
 /* A node pressed into a plane (a load of 0.1 N, 700 times its weight:
  * it rests within its clearance, held there by its penalty): Newton's
  * iterations converge every step.
@@ -303,6 +376,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(free_fall_bdf2),
 		cmocka_unit_test(resume_needs_history),
+		cmocka_unit_test(long_steps_at_rest),
 		cmocka_unit_test(lands_and_rests),
 		cmocka_unit_test(pressed_into_a_plane),
 		cmocka_unit_test(undamped_never_gains),

@@ -1008,6 +1008,28 @@ resume_every_keyframe_bdf2(void **state)
 	    "integrator = bdf2\noutput_rate = 50 Hz\n" TINY_CLOTH, 5);
 }
 
+/* ... and where its steps are two ticks (a cloth lying on the floor, at
+ * dt = auto: stepper.c bdf2_next_dt), whose keyframes hold the history
+ * taken for the next step's length, from each of them too. */
+static const char tiny_bdf2_rest[] =
+    "[simulation]\nname = tiny-bdf2-rest\nduration = 0.2 s\ndt = auto\nintegrator = bdf2\n"
+    "output_rate = 50 Hz\n[cloth]\nnodes = 4 4\nspacing = 10 mm\norigin = 0 0.1375 0 mm\n"
+    "orientation = +x +z\nweight = 150 g/m2\nthickness = 0.55 mm\nmodulus_warp = 0.45 MPa\n"
+    "modulus_weft = 0.30 MPa\nshear_modulus = 9 kPa\nbending_warp = 3 uN*m\n"
+    "bending_weft = 2 uN*m\ndamping = 2 /s\n[plane]\npoint = 0 0 0 m\n[collision]\nself = on\n";
+
+static void
+resume_every_keyframe_bdf2_long_steps(void **state)
+{
+	struct truth tr;
+
+	(void)state;
+	record_text(&tr, replay_path, tiny_bdf2_rest, 3);
+	assert_true(tr.nsteps < 15);	/* of 20 ticks of 10 ms */
+	truth_free(&tr);
+	resume_every_keyframe_of(tiny_bdf2_rest, 3);
+}
+
 /* What a restore checks: a saved state is taken only whole and only into
  * its own run (stepper_restore: the node count, dt_set, the hash, and st
  * untouched by a refusal), so a replay resumes only into the scene it was
@@ -1824,6 +1846,7 @@ main(void)
 		cmocka_unit_test(resume_every_keyframe),
 		cmocka_unit_test(resume_every_keyframe_fast),
 		cmocka_unit_test(resume_every_keyframe_bdf2),
+		cmocka_unit_test(resume_every_keyframe_bdf2_long_steps),
 		cmocka_unit_test(restore_checks),
 		cmocka_unit_test(cli_record_resume),
 		cmocka_unit_test(cli_events_node),

@@ -92,7 +92,7 @@
  * the peers' 25^2 table from 0.2001 m; 0.51 at the 90th percentile, 1.3
  * at most), 0.43 m/s at 50^2 as it lands: kicks that kept a pile
  * jittering at 0.2 to 0.8 m/s and the cloth heaped against the cube where
- * RK4's and the converged step's lie flat on the floor. At 0.02 the
+ * RK4's and the converged step's lie on the floor. At 0.02 the
  * errors left are 0.0025 m/s (median; 0.03 at the 90th percentile).
  * bench-history.md, bdf2.sh, 2026-12-07 (stop 46). */
 #define NEWTON_VSTOP 0.02

@@ -1926,7 +1926,7 @@ static int
 newton(struct bdf2 *b, const double *y, double *phi_first)
 {
 	size_t n3 = 3 * (size_t)b->fo->cl->n, i;
-	bool converged = false, flown = false;
+	bool converged = false, flown = false, contact;
 	double phi;
 	int it;
 
@@ -1968,9 +1968,10 @@ newton(struct bdf2 *b, const double *y, double *phi_first)
 			*phi_first = phi;
 		if (!line_search(b, phi))
 			break;	/* no descent left: as far as roundoff allows */
-		if (pushing(b) ? phi - b->phi_taken <= b->decrease_contact *
-		    (*phi_first - b->phi_taken) && b->last_step <= NEWTON_VSTOP * b->beta :
-		    phi - b->phi_taken <= b->decrease * (*phi_first - b->phi_taken)) {
+		contact = pushing(b);
+		if (phi - b->phi_taken <= (contact ? b->decrease_contact : b->decrease) *
+		    (*phi_first - b->phi_taken) &&
+		    (!contact || b->last_step <= NEWTON_VSTOP * b->beta)) {
 			converged = true;
 			it++;
 			break;

@@ -489,23 +489,32 @@ fast_contacts(struct stepper *st, const double *y, double h, struct step_failure
 #define FAST_WINDOW_SPACINGS 2.0
 #define FAST_WINDOWS_MOST 64
 
+/* The fastest node's speed in state y (0 for NaN: find_blowup's). */
+static double
+fastest_speed(const struct cloth *cl, const double *y)
+{
+	size_t n3 = 3 * (size_t)cl->n;
+	double most = 0;
+	int p;
+
+	for (p = 0; p < cl->n; p++) {
+		vec3 v = v3_load(y + n3 + 3 * p);
+		double s2 = v3_dot(v, v);
+
+		most = s2 > most ? s2 : most;
+	}
+	return sqrt(most);
+}
+
 static int
 fast_windows(const struct stepper *st, double h)
 {
 	const struct cloth *cl = &st->net.cl;
-	size_t n3 = 3 * (size_t)cl->n;
-	double most = 0, want;
-	int p;
+	double want;
 
 	if (!st->col.active || !st->col.pairs)
 		return 1;
-	for (p = 0; p < cl->n; p++) {
-		vec3 v = v3_load(st->y + n3 + 3 * p);
-		double s2 = v3_dot(v, v);
-
-		most = s2 > most ? s2 : most;	/* NaN is not: find_blowup's */
-	}
-	want = ceil(sqrt(most) * h / (FAST_WINDOW_SPACINGS * cl->h) * (1 - 1e-12));
+	want = ceil(fastest_speed(cl, st->y) * h / (FAST_WINDOW_SPACINGS * cl->h) * (1 - 1e-12));
 	return want >= FAST_WINDOWS_MOST ? FAST_WINDOWS_MOST : want >= 1 ? (int)want : 1;
 }
 
@@ -619,19 +628,12 @@ static double
 bdf2_next_dt(const struct stepper *st, double t, const double *y)
 {
 	const struct cloth *cl = &st->net.cl;
-	size_t n3 = 3 * (size_t)cl->n;
-	double most = 0, frame = 1 / st->sc->output_rate, left;
-	int p, k = BDF2_TICKS_MOST;
+	double most, frame = 1 / st->sc->output_rate, left;
+	int k = BDF2_TICKS_MOST;
 
 	if (!st->dt_auto)
 		return st->dt_set;
-	for (p = 0; p < cl->n; p++) {
-		vec3 v = v3_load(y + n3 + 3 * p);
-		double s2 = v3_dot(v, v);
-
-		most = s2 > most ? s2 : most;
-	}
-	most = sqrt(most);
+	most = fastest_speed(cl, y);
 	while (k > 1 && !(most * k * st->dt_set <= BDF2_GROW_MOTION * cl->h))
 		k--;
 	/* the ticks to the next frame */

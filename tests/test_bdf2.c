@@ -9,7 +9,6 @@
  * a tolerance would; at rest the steps are two ticks. */
 #include <math.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "testutil.h"
 
@@ -168,18 +167,6 @@ lands_and_rests(void **state)
 	scene_free(&sc);
 }
 
-/* text with its "dt = 10 ms" made dt */
-static void
-parse_with_dt(struct scene *sc, const char *text, const char *dt)
-{
-	char buf[2048];
-	const char *at = strstr(text, "dt = 10 ms");
-
-	assert_non_null(at);
-	snprintf(buf, sizeof buf, "%.*s%s%s", (int)(at - text), text, dt, at + strlen("dt = 10 ms"));
-	parse_text(sc, buf);
-}
-
 /* At dt = auto a step after the first is two ticks of 10 ms where the
  * fastest node would move at most a quarter spacing in them (stepper.c
  * bdf2_next_dt), one where it moves faster, and always one at a scene's
@@ -200,9 +187,9 @@ long_steps_at_rest(void **state)
 		double lowest = INFINITY, first_dt;
 		int p, steps = 0;
 
-		parse_with_dt(&sc, c == 1 ?
+		parse_text_with(&sc, "test.scene", c == 1 ?
 		    FLAT("damping = 2 /s\nvelocity = 0 -1 0 m/s\n[plane]\npoint = 0 0 0 m\n") :
-		    FLAT("damping = 2 /s\n[plane]\npoint = 0 0.0198625 0 m\n"), dts[c]);
+		    FLAT("damping = 2 /s\n[plane]\npoint = 0 0.0198625 0 m\n"), "dt = 10 ms", dts[c]);
 		st = new_stepper(&sc);
 		step_once(st);
 		first_dt = report_of(st).t;

@@ -46,12 +46,28 @@ load_shipped(struct scene *sc, const char *name)
 		fail_msg("scene_load: %s", err.msg);
 }
 
+/* Scene text (read from path) with the first occurrence of `from`
+ * replaced by `to`. */
+static inline void
+parse_text_with(struct scene *sc, const char *path, const char *text, const char *from,
+    const char *to)
+{
+	struct drape_err err;
+	char out[16384];
+	const char *at;
+
+	if ((at = strstr(text, from)) == NULL)
+		fail_msg("%s has no '%s'", path, from);
+	snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+	if (scene_parse(sc, path, out, &err) != 0)
+		fail_msg("scene_parse: %s", err.msg);
+}
+
 /* A shipped scene with the first occurrence of `from` replaced by `to`. */
 static inline void
 load_shipped_with(struct scene *sc, const char *path, const char *from, const char *to)
 {
-	struct drape_err err;
-	char text[16384], out[16384], *at;
+	char text[16384];
 	size_t n;
 	FILE *f = fopen(path, "r");
 
@@ -60,11 +76,7 @@ load_shipped_with(struct scene *sc, const char *path, const char *from, const ch
 	n = fread(text, 1, sizeof text - 1, f);
 	fclose(f);
 	text[n] = '\0';
-	if ((at = strstr(text, from)) == NULL)
-		fail_msg("%s has no '%s'", path, from);
-	snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
-	if (scene_parse(sc, path, out, &err) != 0)
-		fail_msg("scene_parse: %s", err.msg);
+	parse_text_with(sc, path, text, from, to);
 }
 
 static inline struct stepper *

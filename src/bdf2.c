@@ -188,6 +188,8 @@ bdf2_init(struct bdf2 *b, const struct scene *sc, const struct forces *fo,
 	b->decrease = tol > 0 ? 0 : NEWTON_DECREASE;
 	b->decrease_contact = tol > 0 ? 0 : NEWTON_DECREASE_CONTACT;
 	b->max_newton = 40;
+	b->mg_step = -1;
+	b->mg_cg = -1;
 	b->max_cg = 400;
 	for (i = 0; i < cl->nsprings; i++)
 		b->kmax = cl->springs[i].k > b->kmax ? cl->springs[i].k : b->kmax;
@@ -1338,13 +1340,39 @@ edge_sweep(const struct bdf2 *b, const double *r, double *z, bool backward)
 
 /* The preconditioner of H: its multigrid, or where that fails (H not
  * positive definite to it) its 3 x 3 diagonal blocks inverted. */
+/*
+ * The multigrid for this iteration's H. A step's first iteration sets it
+ * up whole; a later one refreshes the finest level's lines alone
+ * (mg_update_fine, a sixth of a setup: the interpolation and the coarse
+ * levels, whose Galerkin products are most of a setup's cost, kept from
+ * the step's last full setup) for as long as its solves take no more CG
+ * iterations than the first solve after that setup did; one that takes
+ * more (contacts switched on, the cloth folded since) has the next
+ * iteration set up whole. The coarse levels only steer CG: the V-cycle
+ * stays symmetric positive definite, its smoothers on the current H, and
+ * Newton's steps go where they went, fewer or more iterations apart.
+ * Kept within a step, so that a resumed run sets up as the run did.
+ * Nine scenes (tablecloth with friction 0, 0.1, 0.3; strip; peers' table
+ * at 25^2 with its friction, 0 and 0.3; 50^2 to 0.25 and 0.5 s) 42.1 ->
+ * 33.2 s of user CPU summed, CG iterations about as many (65.6 against
+ * 69.6 a step summed); the twelve drops of the peers' table median 3.85
+ * -> 3.16 s (bench-history.md, bdf2.sh, 2026-12-07, stop 47). Allowing
+ * one CG iteration more than the first solve's before a full setup
+ * (or two, from the third iteration: stop 46) let the solves grow and
+ * cost as much as it saved.
+ */
 static void
 precondition_setup(struct bdf2 *b)
 {
 	int p;
 
-	/* a full setup each iteration: the finest level's alone
-	 * (mg_update_fine) left the tablecloth more iterations than it saved */
+	if (b->use_mg && b->mg_step == b->steps && b->mg_cg >= 0 && b->last_cg <= b->mg_cg &&
+	    mg_update_fine(&b->mg, &b->H) == 0) {
+		edge_blocks_setup(b);
+		return;
+	}
+	b->mg_step = b->steps;
+	b->mg_cg = -1;
 	if ((b->use_mg = mg_setup(&b->mg, &b->H) == 0)) {
 		edge_blocks_setup(b);
 		return;
@@ -1950,6 +1978,8 @@ newton(struct bdf2 *b, const double *y, double *phi_first)
 		assemble(b, b->x);
 		precondition_setup(b);
 		b->last_cg = solve(b, forcing_term(b, isnan(*phi_first), n3));
+		if (b->mg_cg < 0)
+			b->mg_cg = b->last_cg;
 		b->cg += b->last_cg;
 		b->model_last = sqrt(dot(b->r, b->r, n3));
 		if (stop_asked(b))

@@ -123,6 +123,8 @@ struct bdf2 {
 	struct blockmat H;	/* the Newton system, with the pairs' diagonal blocks */
 	struct mg mg;		/* its preconditioner */
 	bool use_mg;		/* the last setup succeeded (else block Jacobi) */
+	long mg_step;		/* the step of its last full setup (-1: none yet) */
+	int mg_cg;		/* CG iterations of the first solve after it (-1: none yet) */
 	double kmax;		/* N/m: the stiffest spring's */
 	double tol;		/* converged when every free node's |dPhi/dx|/m <= tol (m/s^2), */
 	double rel;		/* or Newton's step moves no node rel of the step's largest motion */

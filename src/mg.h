@@ -144,10 +144,10 @@ int mg_setup(struct mg *m, const struct blockmat *A);
 
 /* The finest level's line factors alone from A, the interpolation and
  * coarse levels kept from the last mg_setup: stale but cheap (a sixth of
- * a setup), for a Newton iteration whose matrix changed a little; not
- * across a change of the held nodes or the contacts, which the coarse
- * levels would not know. Still symmetric positive definite. A full setup
- * when there was none. 0, or -1 as mg_setup. */
+ * a setup), for a Newton iteration whose matrix changed a little. What
+ * the coarse levels do not know (contacts switched, nodes held since)
+ * costs CG iterations, not correctness: still symmetric positive
+ * definite. A full setup when there was none. 0, or -1 as mg_setup. */
 int mg_update_fine(struct mg *m, const struct blockmat *A);
 
 /* z = B r for 3n-vectors (z must not alias r): one V-cycle from z = 0,

@@ -63,12 +63,14 @@ void obstacle_bounds(const struct obstacle *o, vec3 *lo, vec3 *hi);
  * than its distance). Returns the segment's greatest depth, its t in
  * [0, 1] (the first on a tie) and the outward normal of the face it is
  * deepest under. A box's edge cut by a cloth edge whose ends are outside
- * is found exactly (pbd.c, bdf2.c keep edges out of boxes by it). */
+ * is found exactly (pbd.c, bdf2.c keep edges out of boxes by it;
+ * obstacle_segment_nearest takes a box's deepest point from it). */
 double obstacle_box_segment_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *t, vec3 *normal);
 
 /* The least signed distance to an analytic solid along segment a-b, and
- * its t in [0, 1] (an end when the least is there). About 50 calls of
- * obstacle_distance. */
+ * its t in [0, 1] (an end when the least is there). A box's exactly (a
+ * few of obstacle_distance's cost); the others' by a search of about 50
+ * calls of obstacle_distance. */
 double obstacle_segment_nearest(const struct obstacle *o, vec3 a, vec3 b, double *t);
 
 /* Checks the shape and normalises a plane's normal. Returns 0, or -1 with

@@ -207,6 +207,57 @@ test_box(void **state)
 	check_consistent(&o, v3(-1, -1, -1), v3(3, 2, 5), inside_box);
 }
 
+/* The least signed distance along a segment to a box (exact, from the
+ * slabs' breakpoints) against a dense sampling of the segment: never
+ * above the sampling's least, and no further below it than the
+ * sampling's step allows; the t returned is where that distance is. */
+static void
+test_box_segment_nearest(void **state)
+{
+	struct obstacle o = box(v3(0, 0, 0), v3(2, 1, 4));
+	unsigned long seed = 12345;
+	double t, f;
+	int i, k;
+
+	(void)state;
+	/* flat above the top: the lowest t, an end */
+	f = obstacle_segment_nearest(&o, v3(0.5, 1.5, 1), v3(1.5, 1.5, 3), &t);
+	assert_double_equal(f, 0.5, EPS);
+	assert_double_equal(t, 0, EPS);
+	/* past a vertical edge, nearest a quarter of x and z off it */
+	f = obstacle_segment_nearest(&o, v3(3.5, 0.5, 3), v3(1.5, 0.5, 5), &t);
+	assert_double_equal(f, sqrt(0.125), EPS);
+	assert_double_equal(t, 0.625, EPS);
+	/* through the box: its deepest point, under the top and the faces
+	 * x = 0 and x = 2 alike (depth 0.5 at x = 1) */
+	f = obstacle_segment_nearest(&o, v3(-1, 0.5, 2), v3(3, 0.5, 2), &t);
+	assert_double_equal(f, -0.5, EPS);
+	assert_double_equal(t, 0.5, 1e-12);
+	/* one end inside: there */
+	f = obstacle_segment_nearest(&o, v3(1, 0.5, 3.5), v3(1, 3, 3.5), &t);
+	assert_double_equal(f, -0.5, EPS);
+	assert_double_equal(t, 0, EPS);
+	for (i = 0; i < 2000; i++) {
+		double c[6], best = INFINITY, at;
+		vec3 a, b;
+
+		for (k = 0; k < 6; k++) {	/* a 48-bit LCG: the same cases every run */
+			seed = (seed * 25214903917UL + 11) & ((1UL << 48) - 1);
+			c[k] = -1.5 + 7.0 * (double)(seed >> 16) / 4294967296.0;
+		}
+		a = v3(c[0], c[1] - 1, c[2]);
+		b = v3(c[3], c[4] - 1, c[5]);
+		f = obstacle_segment_nearest(&o, a, b, &t);
+		for (k = 0; k <= 4000; k++)
+			best = fmin(best, obstacle_distance(&o, v3_madd(a, v3_sub(b, a), k / 4000.0), NULL, NULL));
+		at = obstacle_distance(&o, v3_madd(a, v3_sub(b, a), t), NULL, NULL);
+		assert_true(t >= 0 && t <= 1);
+		assert_double_equal(f, at, EPS);
+		assert_true(f <= best + 1e-12);
+		assert_true(f >= best - v3_len(v3_sub(b, a)) / 4000);
+	}
+}
+
 static void
 test_disc(void **state)
 {
@@ -698,6 +749,7 @@ main(void)
 		cmocka_unit_test(test_plane),
 		cmocka_unit_test(test_sphere),
 		cmocka_unit_test(test_box),
+		cmocka_unit_test(test_box_segment_nearest),
 		cmocka_unit_test(test_disc),
 		cmocka_unit_test(test_bounds),
 		cmocka_unit_test(test_check),

@@ -1338,28 +1338,27 @@ edge_sweep(const struct bdf2 *b, const double *r, double *z, bool backward)
 	}
 }
 
-/* The preconditioner of H: its multigrid, or where that fails (H not
- * positive definite to it) its 3 x 3 diagonal blocks inverted. */
 /*
- * The multigrid for this iteration's H. A step's first iteration sets it
- * up whole; a later one refreshes the finest level's lines alone
- * (mg_update_fine, a sixth of a setup: the interpolation and the coarse
- * levels, whose Galerkin products are most of a setup's cost, kept from
- * the step's last full setup) for as long as its solves take no more CG
- * iterations than the first solve after that setup did; one that takes
- * more (contacts switched on, the cloth folded since) has the next
- * iteration set up whole. The coarse levels only steer CG: the V-cycle
- * stays symmetric positive definite, its smoothers on the current H, and
- * Newton's steps go where they went, fewer or more iterations apart.
- * Kept within a step, so that a resumed run sets up as the run did.
- * Nine scenes (tablecloth with friction 0, 0.1, 0.3; strip; peers' table
- * at 25^2 with its friction, 0 and 0.3; 50^2 to 0.25 and 0.5 s) 42.1 ->
+ * The preconditioner of H: its multigrid, or where that fails (H not
+ * positive definite to it) its 3 x 3 diagonal blocks inverted. A step's
+ * first iteration sets the multigrid up whole; a later one refreshes the
+ * finest level's lines alone (mg_update_fine, a sixth of a setup: the
+ * interpolation and the coarse levels, whose Galerkin products are most
+ * of a setup's cost, kept from the step's last full setup) for as long
+ * as its solves take no more CG iterations than the first solve after
+ * that setup did; after one that takes more (contacts switched on, the
+ * cloth folded since) the next iteration sets up whole. Stale coarse
+ * levels cost CG iterations, never the solve's answer: the V-cycle stays
+ * symmetric positive definite, its smoothers on the current H. Kept
+ * within a step, so that a resumed run sets up as the run did. Nine
+ * scenes (tablecloth with friction 0, 0.1, 0.3; strip; peers' table at
+ * 25^2 with its friction, 0 and 0.3; 50^2 to 0.25 and 0.5 s) 42.1 ->
  * 33.2 s of user CPU summed, CG iterations about as many (65.6 against
  * 69.6 a step summed); the twelve drops of the peers' table median 3.85
  * -> 3.16 s (bench-history.md, bdf2.sh, 2026-12-07, stop 47). Allowing
- * one CG iteration more than the first solve's before a full setup
- * (or two, from the third iteration: stop 46) let the solves grow and
- * cost as much as it saved.
+ * one CG iteration more than the first solve's before a full setup (or
+ * two, from the third iteration: stop 46) let the solves grow and cost
+ * as much as it saved.
  */
 static void
 precondition_setup(struct bdf2 *b)
@@ -1455,10 +1454,12 @@ solve(struct bdf2 *b, double eta)
 	for (i = 0; i < n3; i++)
 		b->r[i] = -b->g[i];
 	stop2 = eta * eta * dot(b->r, b->r, n3);
+	if (!(stop2 > 0))	/* g = 0: dx = 0 */
+		return 0;
 	precondition(b, b->r, b->z);
 	memcpy(b->p, b->z, n3 * sizeof *b->p);
 	rz = dot(b->r, b->z, n3);
-	for (it = 0; it < b->max_cg && stop2 > 0; it++) {
+	for (it = 0; it < b->max_cg; it++) {
 		double pq, alpha, rz_new, beta;
 
 		if ((it & 15) == 15 && stop_asked(b))

@@ -556,7 +556,8 @@ obstacle_segment_nearest(const struct obstacle *o, vec3 a, vec3 b, double *tp)
 		}
 	t = f1 <= f2 ? t1 : t2;
 	f = f1 <= f2 ? f1 : f2;
-ends:	/* the ends, which the search only nears */
+ends:
+	/* the ends, which the search only nears */
 	fa = obstacle_distance(o, a, NULL, NULL);
 	fb = obstacle_distance(o, b, NULL, NULL);
 	if (fa <= f && fa <= fb) {

@@ -26,7 +26,10 @@
 # first round's.
 # Then the refinement: the table's first 0.25 s at 25^2, 50^2 and 100^2
 # (the same 0.24 m, finer), Blender, Bullet, and drape's bdf2 and fast
-# (both with bvh) in the same rounds, BENCH_PEERS_REFINE_RUNS rounds.
+# (both with bvh) in the same rounds, BENCH_PEERS_REFINE_RUNS rounds, the
+# drop again in turn: how many Newton iterations bdf2's landing takes
+# moves by 15 % either way with its path's last bits, so one drop is one
+# draw (bench/README.md, bdf2.sh, stop 47).
 #
 # Skips (exit 0, saying why) without blender, without Bullet's float64
 # build (pkg-config bullet-float64; Debian's libbullet-dev), without g++
@@ -39,7 +42,7 @@
 #                            turn (default "0.2 0.2001 0.2002")
 #   BENCH_PEERS_CORE         the core every timed run is pinned to (default 1)
 #   BENCH_PEERS_SKIP         parts to leave out: "table strip refine"
-#   BENCH_PEERS_REFINE_RUNS  rounds of the refinement (default 1)
+#   BENCH_PEERS_REFINE_RUNS  rounds of the refinement (default 3)
 #   BENCH_PEERS_SIZES        refinement sizes (default "25 50 100")
 #   BENCH_PEERS_BULLET_DT    Bullet's fixed step, s (default 0.001)
 #   BENCH_PEERS_BULLET_ITER  Bullet's position iterations (default 4)
@@ -58,7 +61,7 @@ command -v "$cxx" >/dev/null 2>&1 || skipped "no C++ compiler ($cxx) to build be
 command -v taskset >/dev/null 2>&1 || skipped "no taskset (util-linux) to pin the runs to one core"
 . "$(cd "$(dirname "$0")" && pwd)/lib.sh"
 core=${BENCH_PEERS_CORE:-1}
-rruns=${BENCH_PEERS_REFINE_RUNS:-1}
+rruns=${BENCH_PEERS_REFINE_RUNS:-3}
 drops=${BENCH_PEERS_DROPS:-0.2 0.2001 0.2002}
 sizes=${BENCH_PEERS_SIZES:-25 50 100}
 bdt=${BENCH_PEERS_BULLET_DT:-0.001}
@@ -268,7 +271,12 @@ if want refine; then
 	frames=8 # 8 x 31.6 ms = 0.253 s
 	for n in $sizes; do
 		peers_table "$n" 1 rk4 >"$tmp/r$n.scene"
-		first_obj table "$n" "$tmp/r$n.scene" >"$tmp/r$n.obj"
+		k=0
+		for y in $drops; do	# each drop's scene and first frame, as the table's
+			k=$((k + 1))
+			edit_scene "$tmp/r$n.scene" "cloth.origin=-0.12 $y -0.12 m" >"$tmp/r$n-d$k.scene"
+			first_obj table "$n" "$tmp/r$n-d$k.scene" "$y" >"$tmp/r$n-d$k.obj"
+		done
 		h=$(table_h "$n")
 		mass=$(node_mass 0.0576 $((n * n)))
 		q=$(awk -v n="$n" 'BEGIN { q = int(n / 5 + 0.5); print q < 5 ? 5 : q }')
@@ -277,12 +285,13 @@ if want refine; then
 			rc=0
 			for r in $(seq 1 "$rruns"); do
 				[ -t 2 ] && printf '\r  refinement round %d: %d^2 %s          ' "$r" "$n" "$m" >&2
+				k=$(( (r - 1) % ndrops + 1 ))	# this round's drop
 				out=-
 				[ "$r" = 1 ] && { out=$tmp/rframes-$n-$m; mkdir -p "$out"; }
 				case $m in
-				blender) run_blender "$tmp/r$n.obj" "$out" "$frames" "$q" "$mass" "$h" 1 ;;
-				bullet) run_bullet "$tmp/r$n.obj" "$out" 0.25 "$frames" "$mass" "$h" 1 ;;
-				*) run_drape "$tmp/r$n.scene" "$m" 0.25 ;;
+				blender) run_blender "$tmp/r$n-d$k.obj" "$out" "$frames" "$q" "$mass" "$h" 1 ;;
+				bullet) run_bullet "$tmp/r$n-d$k.obj" "$out" 0.25 "$frames" "$mass" "$h" 1 ;;
+				*) run_drape "$tmp/r$n-d$k.scene" "$m" 0.25 ;;
 				esac
 				rc=$?
 				[ $rc = 0 ] || { echo "$prog: refinement $n^2 $m exited $rc:"; tail -n 3 "$tmp/err"; } >&2
@@ -292,7 +301,7 @@ if want refine; then
 			wps=$(awk '{ print $1 / $2 }' "$tmp/rw" | median)
 			case $m in
 			blender | bullet) read -r pe pw ie iw fr < <(audit_frames "$tmp/rframes-$n-$m" table) ;;
-			*) edit_scene "$tmp/r$n.scene" "simulation.duration=0.25 s" >"$tmp/r$n-a.scene"
+			*) edit_scene "$tmp/r$n-d1.scene" "simulation.duration=0.25 s" >"$tmp/r$n-a.scene"
 				read -r pe pw ie iw fr < <(audit_drape "$tmp/r$n-a.scene" "$m") ;;
 			esac
 			[ "$m" = blender ] || q=-
@@ -301,7 +310,7 @@ if want refine; then
 		done
 	done
 	[ -t 2 ] && printf '\r%60s\r' '' >&2
-	echo "refinement: the peers' table, first 0.25 s (Blender 8 frames, 0.253 s), median of $rruns:"
+	echo "refinement: the peers' table, first 0.25 s (Blender 8 frames, 0.253 s), median of $rruns, the drop in turn:"
 	awk -F, 'NR > 1 { printf "  %-8s %6d nodes%s: %s s/sim-s (%s s), %s pairs at end, %s worst%s\n", $1, $2,
 		($3 == "-" ? "" : " q" $3), $5, $4, $6, $7, ($8 == "ok" ? "" : " " $8) }' "$rcsv"
 	awk -F, 'NR > 1 && $5 != "-" { w[$1] = w[$1] (w[$1] == "" ? "" : " ") $5 }

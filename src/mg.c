@@ -1174,6 +1174,12 @@ mg_update_fine(struct mg *m, const struct blockmat *A)
 	return setup_levels(m, A, m->ready && m->nlevels > 1);
 }
 
+int
+mg_levels(const struct mg *m)
+{
+	return m->nlevels;
+}
+
 /* ---- apply ---- */
 
 /* x = (L L^T)^-1 r on the coarsest level (r, x by node). */

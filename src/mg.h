@@ -150,6 +150,10 @@ int mg_setup(struct mg *m, const struct blockmat *A);
  * definite. A full setup when there was none. 0, or -1 as mg_setup. */
 int mg_update_fine(struct mg *m, const struct blockmat *A);
 
+/* How many levels: 1 where the band Cholesky of the finest is the whole
+ * of it (a strip, a small cloth), and mg_update_fine a full setup. */
+int mg_levels(const struct mg *m);
+
 /* z = B r for 3n-vectors (z must not alias r): one V-cycle from z = 0,
  * B symmetric positive definite, B ~ A^-1 (z = r until a setup has
  * succeeded). */

@@ -618,6 +618,7 @@ exact_on_one_level(void **state)
 		assert_true(r && z && az);
 		assert_int_equal(mg_init(&m, &s.net.cl), 0);
 		assert_int_equal(m.nlevels, 1);
+		assert_int_equal(mg_levels(&m), 1);	/* what bdf2 asks */
 		assert_int_equal(mg_setup(&m, &s.A), 0);
 		random_vector(r, n3);
 		mg_apply(&m, r, z);
@@ -652,6 +653,7 @@ interpolation_covers_the_shape(void **state)
 	assert_int_equal(mg_init(&m, &s.net.cl), 0);
 	assert_int_equal(mg_setup(&m, &s.A), 0);
 	assert_true(m.nlevels >= 3);
+	assert_int_equal(mg_levels(&m), m.nlevels);
 	for (l = 0; l + 1 < m.nlevels; l++)
 		for (p = 0; p < m.lv[l].n; p++) {
 			const struct mg_level *f = &m.lv[l];

@@ -46,7 +46,8 @@
 #
 # Environment:
 #   BENCH_RUNS              rounds of part 1 (default 3); the figures are medians
-#   BENCH_BDF2_REFINE_RUNS  rounds of part 2 (default 1)
+#   BENCH_BDF2_REFINE_RUNS  rounds of part 2's first seconds, the drop of
+#                           BENCH_BDF2_HEIGHTS in turn (default 3)
 #   BENCH_BDF2_SIZES        nodes per side for 2 (default "25 50 100")
 #   BENCH_BDF2_UNTIL        simulated seconds for 2 (default 0.25)
 #   BENCH_BDF2_SPACINGS     the drape's squares for 5, mm (default "10 5 2.5")
@@ -59,7 +60,7 @@
 set -u
 prog=bdf2.sh
 . "$(cd "$(dirname "$0")" && pwd)/lib.sh"
-rruns=${BENCH_BDF2_REFINE_RUNS:-1}
+rruns=${BENCH_BDF2_REFINE_RUNS:-3}
 sizes=${BENCH_BDF2_SIZES:-25 50 100}
 until_t=${BENCH_BDF2_UNTIL:-0.25}
 spacings=${BENCH_BDF2_SPACINGS:-10 5 2.5}
@@ -159,7 +160,10 @@ if want 2; then
 			: >"$tmp/rw"
 			for r in $(seq 1 "$rruns"); do
 				[ -t 2 ] && printf '\r  refinement round %d: %d^2 %s          ' "$r" "$n" "$m" >&2
-				"$drape" run --headless --integrator "$m" --until "$until_t" "$tmp/p$n.scene" \
+				# this round's drop: BENCH_BDF2_HEIGHTS in turn, as peers.sh's
+				y=$(echo $heights | awk -v r="$r" '{ print $((r - 1) % NF + 1) }')
+				"$drape" run --headless --integrator "$m" --until "$until_t" \
+					--set "cloth.origin=-0.12 $y -0.12 m" "$tmp/p$n.scene" \
 					>"$tmp/out" 2>"$tmp/err" || { echo "$prog: $n^2 $m:"; head -n 3 "$tmp/err"; } >&2
 				echo "$(wall_of <"$tmp/out") $(awk '/^simulated / { print $2 }' "$tmp/out")" >>"$tmp/rw"
 			done
@@ -191,7 +195,7 @@ if want 2; then
 		echo "$m,625,2,$w,$(awk -v w="$w" 'BEGIN { printf "%.3g", w / 2 }'),$pa,$in,$fr,$ei,$ed" >>"$rcsv"
 	done
 	[ -t 2 ] && printf '\r%60s\r' '' >&2
-	echo "refinement: the peers' 0.24 m table with bvh, first $until_t s (and whole at 25^2), median of $rruns:"
+	echo "refinement: the peers' 0.24 m table with bvh, first $until_t s (median of $rruns, the drop in turn; and whole at 25^2):"
 	awk -F, 'NR > 1 { printf "  %-5s %6d nodes, %4s s: %8s s/sim-s (%s s)%s\n", $1, $2, $3, $5, $4,
 		($6 == "-" ? "" : sprintf(", %s pairs and %s nodes inside in %s frames, edges into the cube %s (%s mm)",
 			$6, $7, $8, $9, $10)) }' "$rcsv"

@@ -23,10 +23,10 @@
 #      (target at least 50 %); (c) the strip's pile at rest: the mean
 #      kinetic energy over its last 0.6 s against RK4's (target within
 #      10x), the median over the strip started BENCH_BDF2_LIFTS higher
-#      (a hundredth of a millimetre moves one path's figure 30x, either
-#      method's); (d) hinges folded past 150 degrees at the end of the
-#      tablecloth and the strip, against RK4's (target none that RK4 has
-#      not);
+#      (over starts a hundredth of a millimetre apart bdf2's figure
+#      spread 11x to 37x, RK4's 2x); (d) hinges folded past 150 degrees
+#      at the end of the tablecloth and the strip, against RK4's (target
+#      none that RK4 has not);
 #   4. statics at bdf2's own step: the cantilever's chord angle against
 #      the heavy elastica's 41.488 degrees (target 0.5 degrees) and the
 #      catenary's sag against the catenary (target 1 %);

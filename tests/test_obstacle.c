@@ -238,15 +238,10 @@ test_box_segment_nearest(void **state)
 	assert_double_equal(f, -0.5, EPS);
 	assert_double_equal(t, 0, EPS);
 	for (i = 0; i < 2000; i++) {
-		double c[6], best = INFINITY, at;
-		vec3 a, b;
+		double best = INFINITY, at;
+		vec3 a = v3(uniform(&seed, -1.5, 5.5), uniform(&seed, -2.5, 4.5), uniform(&seed, -1.5, 5.5));
+		vec3 b = v3(uniform(&seed, -1.5, 5.5), uniform(&seed, -2.5, 4.5), uniform(&seed, -1.5, 5.5));
 
-		for (k = 0; k < 6; k++) {	/* a 48-bit LCG: the same cases every run */
-			seed = (seed * 25214903917UL + 11) & ((1UL << 48) - 1);
-			c[k] = -1.5 + 7.0 * (double)(seed >> 16) / 4294967296.0;
-		}
-		a = v3(c[0], c[1] - 1, c[2]);
-		b = v3(c[3], c[4] - 1, c[5]);
 		f = obstacle_segment_nearest(&o, a, b, &t);
 		for (k = 0; k <= 4000; k++)
 			best = fmin(best, obstacle_distance(&o, v3_madd(a, v3_sub(b, a), k / 4000.0), NULL, NULL));

@@ -177,7 +177,7 @@ add_shear(const struct forces *fo, const double *x, double *f)
  * |kb|^2 e2)/D and dE/de2 = k (2 kb x e1 - |kb|^2 e1)/D. */
 static void
 add_bend(const struct forces *fo, const double *x, const double *v, double *f, double fold,
-    double c)
+    double c, bool exact)
 {
 	const struct cloth *cl = fo->cl;
 	double rest2 = cl->h * cl->h, dmin = fold * rest2;
@@ -187,22 +187,28 @@ add_bend(const struct forces *fo, const double *x, const double *v, double *f, d
 		const struct hinge *hg = &cl->hinges[s];
 		vec3 xb = v3_load(x + 3 * hg->b);
 		vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
-		double d = rest2 + v3_dot(e1, e2), kd, kb2;
+		double d = rest2 + v3_dot(e1, e2), kd, kb2, kt;
 		vec3 kb, ke1, ke2, fa, fc;
+		bool held = false;
 
 		if (forces_poll(fo, s))
 			return;
 		if (!(d > 1e-9 * rest2))
 			continue;	/* folded right back: the energy has no gradient */
-		if (d < dmin)
+		if (d < dmin) {
 			d = dmin;	/* the fold limiter (forces.h) */
+			held = true;
+		}
 		kd = hg->k / d;
 		kb = v3_scale(v3_cross(e1, e2), 2 / d);
 		kb2 = v3_dot(kb, kb);
 		ke2 = v3_cross(kb, e2);
 		ke1 = v3_cross(kb, e1);
-		fa = v3_scale(v3_madd(v3_scale(ke2, 2), e2, kb2), -kd);
-		fc = v3_scale(v3_madd(v3_scale(ke1, 2), e1, -kb2), -kd);
+		/* |kb|^2's share through D: none where D is held, for the
+		 * gradient of the held energy (exact); the fast path keeps it */
+		kt = held && exact ? 0 : kb2;
+		fa = v3_scale(v3_madd(v3_scale(ke2, 2), e2, kt), -kd);
+		fc = v3_scale(v3_madd(v3_scale(ke1, 2), e1, -kt), -kd);
 		if (c > 0 && kb2 > 0) {
 			/* the dashpot (forces.h). The energy depends on |kb| alone,
 			 * so its force is -k |kb| g, g the gradient of |kb|, and the
@@ -229,7 +235,7 @@ add_bend(const struct forces *fo, const double *x, const double *v, double *f, d
 
 static void
 accel(const struct forces *fo, double t, const double *x, const double *v, double *a,
-    bool stretch, bool shear, double fold, double bend_damping)
+    bool stretch, bool shear, double fold, double bend_damping, bool exact)
 {
 	const struct cloth *cl = fo->cl;
 	vec3 g = v3_load(fo->g);
@@ -241,7 +247,7 @@ accel(const struct forces *fo, double t, const double *x, const double *v, doubl
 	if (shear && cl->ncorners > 0 && !forces_stopped(fo))
 		add_shear(fo, x, a);
 	if (cl->nhinges > 0 && !forces_stopped(fo))
-		add_bend(fo, x, v, a, fold, bend_damping);
+		add_bend(fo, x, v, a, fold, bend_damping, exact);
 	for (l = 0; l < fo->nloads; l++)
 		if (load_active(&fo->loads[l], t))
 			for (k = 0; k < fo->loads[l].n; k++)
@@ -259,14 +265,14 @@ accel(const struct forces *fo, double t, const double *x, const double *v, doubl
 void
 forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a)
 {
-	accel(fo, t, x, v, a, true, true, 0, 0);
+	accel(fo, t, x, v, a, true, true, fo->fold, 0, true);
 }
 
 void
 forces_accel_bending(const struct forces *fo, double t, const double *x, const double *v,
     double *a, double fold, double c)
 {
-	accel(fo, t, x, v, a, false, false, fold, c);
+	accel(fo, t, x, v, a, false, false, fold, c, false);
 }
 
 double
@@ -278,6 +284,16 @@ forces_fold_limit(double s)
 	double u = (4 + sqrt(16 + 48 * s)) / 24;
 
 	return 1 / u;
+}
+
+double
+forces_explicit_fold(const struct cloth *cl)
+{
+	double wb = cloth_omega_bound_bend(cl), w = cloth_omega_bound(cl);
+
+	if (cl->nhinges == 0 || !(wb > 0))
+		return 0;
+	return forces_fold_limit(fmax(w * w / (wb * wb), 2));
 }
 
 void
@@ -314,8 +330,15 @@ forces_energy(const struct forces *fo, double t, const double *x, const double *
 		const struct hinge *hg = &cl->hinges[s];
 		vec3 xb = v3_load(x + 3 * hg->b);
 		vec3 e1 = v3_sub(xb, v3_load(x + 3 * hg->a)), e2 = v3_sub(v3_load(x + 3 * hg->c), xb);
-		vec3 kb = v3_scale(v3_cross(e1, e2), 2 / (cl->h * cl->h + v3_dot(e1, e2)));
+		double rest2 = cl->h * cl->h, d = rest2 + v3_dot(e1, e2);
+		vec3 kb;
 
+		if (fo->fold > 0) {	/* as forces_accel's limiter (add_bend) */
+			if (!(d > 1e-9 * rest2))
+				continue;
+			d = fmax(d, fo->fold * rest2);
+		}
+		kb = v3_scale(v3_cross(e1, e2), 2 / d);
 		e->bend += 0.5 * hg->k * v3_dot(kb, kb);
 	}
 	for (l = 0; l < fo->nloads; l++)

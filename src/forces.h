@@ -28,6 +28,9 @@ struct forces {
 	double spring_damping;	/* s */
 	struct load_group *loads;
 	int nloads;
+	/* forces_accel's and forces_energy's fold limiter (0: none; see
+	 * forces_explicit_fold): a hinge's D taken as at least fold * rest^2 */
+	double fold;
 	/* polled in the element loops (NULL: never): once set, a call
 	 * returns early, its result unfinished, for the caller to drop */
 	const volatile sig_atomic_t *stop;
@@ -55,7 +58,8 @@ forces_poll(const struct forces *fo, size_t i)
 	return (i + 1) % FORCES_POLL_EVERY == 0 && forces_stopped(fo);
 }
 
-/* a = F/m for every node, from positions x and velocities v (3n each). */
+/* a = F/m for every node, from positions x and velocities v (3n each):
+ * minus the gradient of forces_energy's, fo->fold's limiter included. */
 void forces_accel(const struct forces *fo, double t, const double *x, const double *v, double *a);
 /* The same without the stretch springs and their dashpots and without
  * the shear corners (the fast path solves both as constraints), and with
@@ -72,6 +76,15 @@ void forces_accel_bending(const struct forces *fo, double t, const double *x, co
     double *a, double fold, double c);
 /* The fold at which a hinge is s times as stiff as at rest (s >= 1). */
 double forces_fold_limit(double s);
+/* The fold limiter of an explicit integrator's forces (fo->fold): a
+ * hinge's stiffness, k at rest and growing as sec^4(theta/2) towards a
+ * fold right back, held where its frequency reaches the network's bound
+ * at rest (cloth_omega_bound, which sets the explicit step), and at least
+ * twice its stiffness at rest. Past it the hinge's energy is k |kb|^2 / 2
+ * with D held there, whose forces stay its gradient. Without it RK4 blew
+ * up as the peers' table landed (bench-history.md, stop 48). 0 where the
+ * cloth has no hinges. */
+double forces_explicit_fold(const struct cloth *cl);
 
 void forces_energy(const struct forces *fo, double t, const double *x, const double *v,
     struct energy *e);

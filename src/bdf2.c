@@ -1342,29 +1342,16 @@ edge_sweep(const struct bdf2 *b, const double *r, double *z, bool backward)
  * The preconditioner of H: its multigrid, or where that fails (H not
  * positive definite to it) its 3 x 3 diagonal blocks inverted. A step's
  * first iteration sets the multigrid up whole; a later one refreshes the
- * finest level's lines alone (mg_update_fine, a sixth of a setup: the
- * interpolation and the coarse levels, whose Galerkin products are most
- * of a setup's cost, kept from the step's last full setup) for as long
- * as its solves take no more CG iterations than the first solve after
- * that setup did; after one that takes more (contacts switched on, the
- * cloth folded since) the next iteration sets up whole. Stale coarse
- * levels cost CG iterations, never the solve's answer: the V-cycle stays
- * symmetric positive definite, its smoothers on the current H. Kept
- * within a step, so that a resumed run sets up as the run did. Nine
- * scenes (tablecloth with friction 0, 0.1, 0.3; strip; peers' table at
- * 25^2 with its friction, 0 and 0.3; 50^2 to 0.25 and 0.5 s) 42.1 ->
- * 33.2 s of user CPU summed, CG iterations about as many (65.6 against
- * 69.6 a step summed); the twelve drops of the peers' table median 3.85
- * -> 3.16 s (bench-history.md, bdf2.sh, 2026-12-07, stop 47). Allowing
- * one CG iteration more than the first solve's before a full setup (or
- * two, from the third iteration: stop 46) let the solves grow and cost
- * as much as it saved. At one level (a strip: the band Cholesky is the
- * whole multigrid) there is no coarse level to keep: the last setup's
- * factor is kept whole, by the same rule, where a contact pushes. The
- * strip lifted by 0 to 0.07 mm, eight runs: 2.72 -> 1.98 s (median),
- * its pile's resting kinetic energy 2.5e-7 -> 5.0e-8 J (median); kept
- * in free motion too, 2.15 s and 1.2e-8 J, but the undamped hanging
- * strip kept 82 % of RK4's energy where it keeps 103 %.
+ * finest level's lines alone (mg_update_fine: the coarse levels' Galerkin
+ * products are most of a setup) while its solves take no more CG
+ * iterations than the first after the last full setup did, and sets up
+ * whole after one that takes more. Stale coarse levels cost iterations,
+ * never the answer (the V-cycle stays SPD, its smoothers on the current
+ * H). Kept within a step, so that a resumed run sets up as the run did.
+ * At one level (a strip: the band Cholesky is all of it) the last factor
+ * is kept by the same rule, but only where a contact pushes: kept in free
+ * motion it cost the undamped hanging strip a fifth of its energy.
+ * Figures: bench-history.md, bdf2.sh, stop 47.
  */
 static bool pushing(const struct bdf2 *b);
 
@@ -1446,10 +1433,7 @@ stop_asked(struct bdf2 *b)
  * residual -(g + H dx). Returns the iterations. Tested on r before it is
  * preconditioned, the stop spares the V-cycle that a test in the
  * preconditioner's norm (r.z) needs after the last update, a third of a
- * solve's of one to three iterations: nine scenes 31.9 -> 25.8 s of user
- * CPU summed, the twelve drops of the peers' table 3.29 -> 2.71 s
- * (median), every target of bench/bdf2.sh parts 3 and 4 as before
- * (bench-history.md, bdf2.sh, 2026-12-07, stop 47).
+ * short solve (bench-history.md, bdf2.sh, stop 47).
  */
 static int
 solve(struct bdf2 *b, double eta)

@@ -3,23 +3,6 @@
 
 #include "network.h"
 
-/* Whether the method steps the forces explicitly (the stepper's
- * integrate.c), and so needs their fold limiter. */
-static int
-explicit_method(enum integrator_kind k)
-{
-	switch (k) {
-	case INTEG_RK4:
-	case INTEG_EULER:
-	case INTEG_SYMPLECTIC_EULER:
-	case INTEG_RK2:
-	case INTEG_DOPRI5:
-		return 1;
-	default:
-		return 0;
-	}
-}
-
 int
 network_build(struct network *net, const struct scene *sc, struct drape_err *err)
 {
@@ -32,7 +15,9 @@ network_build(struct network *net, const struct scene *sc, struct drape_err *err
 		return -1;
 	}
 	cloth_clamp_hinges(&net->cl, net->pr.held);
-	if (explicit_method(sc->integrator))	/* after the clamps: their stiffness counts */
+	/* the explicit methods' fold limiter, after the clamps: their
+	 * stiffness counts */
+	if (!integrator_is_implicit(sc->integrator))
 		net->fo.fold = forces_explicit_fold(&net->cl);
 	return 0;
 }

@@ -459,12 +459,9 @@ obstacle_box_segment_depth(vec3 lo, vec3 hi, vec3 a, vec3 b, double *tp, vec3 *n
  * is a quadratic on each piece, least at its vertex or an end of the
  * piece (the lowest t where it is flat); where that least is 0 the
  * segment reaches the box, and its deepest point is
- * obstacle_box_segment_depth's. It agrees with the golden section below
- * to 1e-6 in t and 1e-12 m in distance at every call of the peers' 25^2
- * landing, for a tenth of its cost: bdf2's edge contacts over a box took
- * 6 % of that landing's time with the search (perf), and a Newton
- * iteration costs 4 % fewer instructions without it (callgrind,
- * bench-history.md, 2026-12-07).
+ * obstacle_box_segment_depth's. The golden section below gives the same
+ * to 1e-6 in t for some ten times the cost, which bdf2's edge contacts
+ * pay at every Phi (bench-history.md, bdf2.sh, stop 47).
  */
 static double
 box_segment_nearest(const struct obstacle *o, vec3 a, vec3 b)
